@@ -1,0 +1,498 @@
+#include "io/parameters.h"
+
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/utilities.h>
+
+#include "io/input_error.h"
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace clothsim
+{
+  namespace
+  {
+    // A deal.II exception's "Additional information" as one line.
+    std::string
+    one_line(const std::exception &exception)
+    {
+      std::string       text = exception.what();
+      const std::string marker = "Additional information:";
+      const auto        pos    = text.find(marker);
+      if (pos != std::string::npos)
+        text = text.substr(pos + marker.size());
+      const auto stacktrace = text.find("Stacktrace:");
+      if (stacktrace != std::string::npos)
+        text = text.substr(0, stacktrace);
+      text = std::regex_replace(text, std::regex("[\\s-]*\\n[\\s-]*"), " ");
+      text = std::regex_replace(text, std::regex("\\s+"), " ");
+      text = std::regex_replace(text, std::regex("^ | $"), "");
+      return text;
+    }
+
+    // The entry name in deal.II's message "... for the entry named <NAME> ...", if any.
+    std::string
+    entry_in(const std::string &message)
+    {
+      std::smatch match;
+      if (std::regex_search(message, match, std::regex("entry named <([^>]*)>")))
+        return match[1];
+      if (std::regex_search(message, match, std::regex("No entry with name <([^>]*)>")))
+        return match[1];
+      return "";
+    }
+
+    const char *const solver_methods = "cg|gmres|direct";
+  } // namespace
+
+
+  void
+  SceneParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Scene name",
+                      "",
+                      Patterns::Anything(),
+                      "Name of the run; output goes to output/<Scene name>/ unless --output-dir "
+                      "is given. Empty: the parameter file's name without extension.");
+    prm.enter_subsection("Mesh");
+    prm.declare_entry("Mesh file",
+                      "../meshes/sheet.msh",
+                      Patterns::FileName(),
+                      "gmsh triangle mesh (.msh), relative to this parameter file's directory. "
+                      "If it is missing but a .geo of the same name exists, gmsh generates it. "
+                      "Lengths in the mesh are in m.");
+    prm.declare_entry("Global refinements",
+                      "0",
+                      Patterns::Integer(0, 8),
+                      "Number of uniform (red) refinements of the mesh as read; each one "
+                      "quarters the triangles' area.");
+    prm.leave_subsection();
+  }
+
+  void
+  SceneParameters::parse_parameters(ParameterHandler &prm)
+  {
+    name = prm.get("Scene name");
+    prm.enter_subsection("Mesh");
+    mesh_file          = prm.get("Mesh file");
+    global_refinements = prm.get_integer("Global refinements");
+    prm.leave_subsection();
+  }
+
+
+  void
+  MaterialParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material");
+    prm.declare_entry("Stiffness given as",
+                      "E*h",
+                      Patterns::Selection("E*h|E and thickness"),
+                      "How the membrane (stretch) stiffness is given: 'E*h' uses 'Stretch "
+                      "stiffness' directly (fabrics); 'E and thickness' uses Young's modulus "
+                      "times thickness (engineering shells).");
+    prm.declare_entry("Stretch stiffness",
+                      "100",
+                      Patterns::Double(1e-12, 1e15),
+                      "Membrane stiffness E*h in N/m (used when 'Stiffness given as = E*h').");
+    prm.declare_entry("Young's modulus",
+                      "1e6",
+                      Patterns::Double(1e-12, 1e15),
+                      "Young's modulus E in Pa (used when 'Stiffness given as = E and "
+                      "thickness').");
+    prm.declare_entry("Thickness",
+                      "1e-3",
+                      Patterns::Double(1e-12, 1e3),
+                      "Shell thickness h in m (used when 'Stiffness given as = E and "
+                      "thickness').");
+    prm.declare_entry("Poisson ratio",
+                      "0.3",
+                      Patterns::Double(0., 0.499),
+                      "Poisson's ratio ν (dimensionless), 0 <= ν < 0.5.");
+    prm.declare_entry("Areal density",
+                      "0.1",
+                      Patterns::Double(1e-12, 1e6),
+                      "Mass per unit reference area ρ_A in kg/m².");
+    prm.declare_entry("Mass",
+                      "lumped",
+                      Patterns::Selection("lumped|consistent"),
+                      "Mass matrix: 'lumped' (a third of each triangle's mass on each vertex) "
+                      "or 'consistent' (the P1 Galerkin mass matrix).");
+    prm.leave_subsection();
+  }
+
+  void
+  MaterialParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Material");
+    if (prm.get("Stiffness given as") == "E*h")
+      stretch_stiffness = prm.get_double("Stretch stiffness");
+    else
+      stretch_stiffness = prm.get_double("Young's modulus") * prm.get_double("Thickness");
+    poisson_ratio = prm.get_double("Poisson ratio");
+    areal_density = prm.get_double("Areal density");
+    lumped_mass   = prm.get("Mass") == "lumped";
+    prm.leave_subsection();
+  }
+
+
+  void
+  DampingParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Damping");
+    prm.declare_entry("Mass proportional",
+                      "0",
+                      Patterns::Double(0., 1e6),
+                      "Rayleigh coefficient α in 1/s: damping force -α M v (air-like drag on "
+                      "every motion, rigid included).");
+    prm.declare_entry("Stiffness proportional",
+                      "0",
+                      Patterns::Double(0., 1e3),
+                      "Rayleigh coefficient β in s: damping force -β K v, K the (positive "
+                      "semi-definite) membrane tangent at the start of the step; damps "
+                      "straining only.");
+    prm.leave_subsection();
+  }
+
+  void
+  DampingParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Damping");
+    mass_proportional      = prm.get_double("Mass proportional");
+    stiffness_proportional = prm.get_double("Stiffness proportional");
+    prm.leave_subsection();
+  }
+
+
+  void
+  LoadParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Loads");
+    prm.declare_entry("Gravity",
+                      "0, 0, -9.81",
+                      Patterns::List(Patterns::Double(-1e6, 1e6), 3, 3, ","),
+                      "Gravitational acceleration g (x, y, z) in m/s².");
+    prm.leave_subsection();
+  }
+
+  void
+  LoadParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Loads");
+    const auto values =
+      Utilities::string_to_double(Utilities::split_string_list(prm.get("Gravity"), ','));
+    for (unsigned int d = 0; d < 3; ++d)
+      gravity[d] = values[d];
+    prm.leave_subsection();
+  }
+
+
+  void
+  ConstraintParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Constraints");
+    prm.declare_entry("Pinned groups",
+                      "",
+                      Patterns::List(Patterns::Anything(), 0, 100, ","),
+                      "Comma-separated names of gmsh physical groups (points or boundary "
+                      "lines) whose vertices follow 'Pinned displacement'.");
+    prm.declare_entry("Pinned displacement",
+                      "0; 0; 0",
+                      Patterns::List(Patterns::Anything(), 3, 3, ";"),
+                      "Displacement of pinned vertices in m: three expressions 'ux; uy; uz' in "
+                      "the reference coordinates x, y, z (m) and time t (s), e.g. "
+                      "'0; 0; 0.1*sin(2*pi*t)'. In static mode t is the load factor 0..1.");
+    prm.leave_subsection();
+  }
+
+  void
+  ConstraintParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Constraints");
+    pinned_groups       = Utilities::split_string_list(prm.get("Pinned groups"), ',');
+    pinned_displacement = prm.get("Pinned displacement");
+    prm.leave_subsection();
+  }
+
+
+  void
+  TimeParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time");
+    prm.declare_entry("Integrator",
+                      "backward euler",
+                      Patterns::Selection("backward euler|static"),
+                      "'backward euler': implicit dynamics, each step the minimiser of the "
+                      "incremental potential. 'static': equilibrium under loads ramped in "
+                      "'Load steps' equal increments (time = load factor 0..1).");
+    prm.declare_entry("End time", "2", Patterns::Double(0., 1e9), "Simulated time in s.");
+    prm.declare_entry("Time step", "0.0166666666666667", Patterns::Double(1e-12, 1e6),
+                      "Time step dt in s (backward euler).");
+    prm.declare_entry("Maximum step halvings",
+                      "8",
+                      Patterns::Integer(0, 30),
+                      "A step whose Newton solve fails is retried with half the step, at most "
+                      "this many times in a row; then the run stops with an error.");
+    prm.declare_entry("Load steps",
+                      "10",
+                      Patterns::Integer(1, 100000),
+                      "Number of equal load increments in static mode.");
+    prm.leave_subsection();
+  }
+
+  void
+  TimeParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time");
+    integrator = prm.get("Integrator") == "static" ? Integrator::static_load_steps :
+                                                     Integrator::backward_euler;
+    end_time          = prm.get_double("End time");
+    time_step         = prm.get_double("Time step");
+    max_step_halvings = prm.get_integer("Maximum step halvings");
+    load_steps        = prm.get_integer("Load steps");
+    prm.leave_subsection();
+  }
+
+
+  void
+  NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    prm.declare_entry("Maximum iterations",
+                      "25",
+                      Patterns::Integer(1, 1000),
+                      "Newton iterations per step before the step counts as failed.");
+    prm.declare_entry("Absolute tolerance",
+                      "1e-9",
+                      Patterns::Double(0., 1e10),
+                      "Converged when the residual's 2-norm (N) is below this, ...");
+    prm.declare_entry("Relative tolerance",
+                      "1e-8",
+                      Patterns::Double(0., 1.),
+                      "... or below this times the residual at the step's first iterate.");
+    prm.declare_entry("Line search",
+                      "polynomial",
+                      Patterns::Selection("polynomial|backtrack|full step"),
+                      "NOX line search on the incremental potential: 'polynomial' (Armijo "
+                      "sufficient decrease, quadratic/cubic interpolation), 'backtrack' "
+                      "(halving until the potential decreases), 'full step' (none).");
+    prm.declare_entry("Tangent",
+                      "projected",
+                      Patterns::Selection("projected|exact"),
+                      "'projected': the membrane's geometric stiffness uses the positive part "
+                      "of the stress, so the tangent is positive definite and CG is valid "
+                      "(Newton converges linearly in compressed elements). 'exact': the true "
+                      "Hessian, indefinite under compression; use with 'gmres' or 'direct'.");
+    prm.leave_subsection();
+  }
+
+  void
+  NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    max_iterations     = prm.get_integer("Maximum iterations");
+    absolute_tolerance = prm.get_double("Absolute tolerance");
+    relative_tolerance = prm.get_double("Relative tolerance");
+    line_search        = prm.get("Line search");
+    projected_tangent  = prm.get("Tangent") == "projected";
+    prm.leave_subsection();
+  }
+
+
+  void
+  LinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    prm.declare_entry("Method",
+                      "cg",
+                      Patterns::Selection(solver_methods),
+                      "Krylov method for each Newton step: 'cg' (needs the projected tangent), "
+                      "'gmres', or 'direct' (Amesos KLU; small systems).");
+    prm.declare_entry("Preconditioner",
+                      "amg",
+                      Patterns::Selection("amg|jacobi"),
+                      "'amg': ML smoothed-aggregation algebraic multigrid with one constant "
+                      "mode per displacement component; 'jacobi': point Jacobi.");
+    prm.declare_entry("Relative tolerance",
+                      "1e-6",
+                      Patterns::Double(1e-16, 1.),
+                      "Krylov stopping criterion, relative to the Newton residual's 2-norm.");
+    prm.declare_entry("Maximum iterations",
+                      "2000",
+                      Patterns::Integer(1, 1000000),
+                      "Krylov iterations before the linear solve counts as failed.");
+    prm.declare_entry("AMG smoother sweeps",
+                      "2",
+                      Patterns::Integer(1, 20),
+                      "Chebyshev smoother sweeps per multigrid level.");
+    prm.declare_entry("AMG aggregation threshold",
+                      "1e-4",
+                      Patterns::Double(0., 1.),
+                      "ML aggregation threshold (strength of connection).");
+    prm.leave_subsection();
+  }
+
+  void
+  LinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    method                    = prm.get("Method");
+    preconditioner            = prm.get("Preconditioner");
+    relative_tolerance        = prm.get_double("Relative tolerance");
+    max_iterations            = prm.get_integer("Maximum iterations");
+    amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
+    amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
+    prm.leave_subsection();
+  }
+
+
+  void
+  OutputParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry("Output interval",
+                      "0.0333333333333333",
+                      Patterns::Double(0., 1e9),
+                      "Simulated time in s between VTK frames and probe rows (0: every step). "
+                      "The first and last states are always written.");
+    prm.declare_entry("Write VTK", "true", Patterns::Bool(), "Write solution.pvd and its frames.");
+    prm.declare_entry("Probes",
+                      "",
+                      Patterns::Map(Patterns::Anything(),
+                                    Patterns::List(Patterns::Double(), 3, 3, ","),
+                                    0,
+                                    1000,
+                                    ";",
+                                    ":"),
+                      "Named reference points 'name: X, Y, Z; name2: X, Y, Z' (m). Each snaps to "
+                      "the nearest mesh vertex; probes.csv records its reference position and "
+                      "displacement.");
+    prm.declare_entry("Progress",
+                      "auto",
+                      Patterns::Selection("auto|on|off"),
+                      "One updating progress line with ETA: 'auto' shows it on a terminal only.");
+    prm.leave_subsection();
+  }
+
+  void
+  OutputParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    interval  = prm.get_double("Output interval");
+    write_vtk = prm.get_bool("Write VTK");
+    probes.clear();
+    for (const std::string &item : Utilities::split_string_list(prm.get("Probes"), ';'))
+      {
+        const auto name_value = Utilities::split_string_list(item, ':');
+        const auto xyz =
+          Utilities::string_to_double(Utilities::split_string_list(name_value[1], ','));
+        probes.push_back({name_value[0], Point<3>(xyz[0], xyz[1], xyz[2])});
+      }
+    progress = prm.get("Progress");
+    prm.leave_subsection();
+  }
+
+
+  void
+  Parameters::declare_parameters(ParameterHandler &prm)
+  {
+    SceneParameters::declare_parameters(prm);
+    MaterialParameters::declare_parameters(prm);
+    DampingParameters::declare_parameters(prm);
+    LoadParameters::declare_parameters(prm);
+    ConstraintParameters::declare_parameters(prm);
+    TimeParameters::declare_parameters(prm);
+    NonlinearSolverParameters::declare_parameters(prm);
+    LinearSolverParameters::declare_parameters(prm);
+    OutputParameters::declare_parameters(prm);
+  }
+
+  void
+  Parameters::parse_parameters(ParameterHandler &prm)
+  {
+    scene.parse_parameters(prm);
+    material.parse_parameters(prm);
+    damping.parse_parameters(prm);
+    loads.parse_parameters(prm);
+    constraints.parse_parameters(prm);
+    time.parse_parameters(prm);
+    nonlinear_solver.parse_parameters(prm);
+    linear_solver.parse_parameters(prm);
+    output.parse_parameters(prm);
+  }
+
+
+  ParameterInput
+  read_parameters(ParameterHandler               &prm,
+                  const std::string              &file,
+                  const std::vector<std::string> &overrides)
+  {
+    Parameters::declare_parameters(prm);
+
+    ParameterInput input;
+    input.file      = file;
+    input.overrides = overrides;
+    input.directory = std::filesystem::path(file).parent_path().string();
+
+    if (!std::filesystem::is_regular_file(file))
+      throw InputError(file, "", "parameter file not found");
+    {
+      std::ifstream probe(file);
+      if (!probe)
+        throw InputError(file, "", "parameter file cannot be read");
+    }
+    try
+      {
+        prm.parse_input(file, "", /*skip_undefined=*/false, /*assert_mandatory=*/false);
+      }
+    catch (const std::exception &e)
+      {
+        const std::string message = one_line(e);
+        throw InputError(file, entry_in(message), message);
+      }
+
+    // --set "Section/Sub/Name=value"
+    for (const std::string &assignment : overrides)
+      {
+        const auto equals = assignment.find('=');
+        if (equals == std::string::npos)
+          throw InputError("--set", assignment, "expected \"Section/Name=value\"");
+        const auto path =
+          Utilities::split_string_list(assignment.substr(0, equals), '/');
+        const std::string value = Utilities::trim(assignment.substr(equals + 1));
+        try
+          {
+            for (unsigned int i = 0; i + 1 < path.size(); ++i)
+              prm.enter_subsection(path[i]);
+            prm.set(path.back(), value);
+            for (unsigned int i = 0; i + 1 < path.size(); ++i)
+              prm.leave_subsection();
+          }
+        catch (const std::exception &e)
+          {
+            throw InputError("--set",
+                             assignment.substr(0, equals),
+                             "no such entry, or the value does not match its pattern (see "
+                             "clothsim --print-parameters): " +
+                               one_line(e));
+          }
+      }
+
+    try
+      {
+        input.parameters.parse_parameters(prm);
+      }
+    catch (const std::exception &e)
+      {
+        const std::string message = one_line(e);
+        throw InputError(file, entry_in(message), message);
+      }
+
+    // Checks that patterns cannot express.
+    for (const Probe &probe : input.parameters.output.probes)
+      if (probe.name.empty() || probe.name.find(',') != std::string::npos)
+        throw InputError(file, "Output/Probes", "probe names must be non-empty, without commas");
+    return input;
+  }
+} // namespace clothsim

@@ -1,0 +1,154 @@
+#pragma once
+
+// Every run parameter, one struct per concept (declare_parameters / parse_parameters as in deal.II
+// step-44). Units are in each entry's documentation; `clothsim --print-parameters` lists them all.
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/point.h>
+
+#include <string>
+#include <vector>
+
+namespace clothsim
+{
+  using namespace dealii;
+
+  struct SceneParameters
+  {
+    std::string  name;               // output/<name>/; empty: the parameter file's stem
+    std::string  mesh_file;          // relative to the parameter file's directory
+    unsigned int global_refinements; // uniform refinements of the mesh as read
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct MaterialParameters
+  {
+    double stretch_stiffness; // E h, N/m (derived when given as E and thickness)
+    double poisson_ratio;     // dimensionless
+    double areal_density;     // kg/m²
+    bool   lumped_mass;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct DampingParameters
+  {
+    double mass_proportional;      // α, 1/s: damping force -α M v
+    double stiffness_proportional; // β, s:   damping force -β K v
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct LoadParameters
+  {
+    Tensor<1, 3> gravity; // m/s²
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct ConstraintParameters
+  {
+    std::vector<std::string> pinned_groups;
+    std::string              pinned_displacement; // FunctionParser expression, x;y;z in m of (x,y,z,t)
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  enum class Integrator
+  {
+    backward_euler,
+    static_load_steps
+  };
+
+  struct TimeParameters
+  {
+    Integrator   integrator;
+    double       end_time;  // s
+    double       time_step; // s
+    unsigned int max_step_halvings;
+    unsigned int load_steps; // static mode
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct NonlinearSolverParameters
+  {
+    unsigned int max_iterations;
+    double       absolute_tolerance; // N
+    double       relative_tolerance;
+    std::string  line_search; // "polynomial", "backtrack", "full step"
+    bool         projected_tangent;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct LinearSolverParameters
+  {
+    std::string  method;         // "cg", "gmres", "direct"
+    std::string  preconditioner; // "amg", "jacobi"
+    double       relative_tolerance;
+    unsigned int max_iterations;
+    unsigned int amg_smoother_sweeps;
+    double       amg_aggregation_threshold;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct Probe
+  {
+    std::string name;
+    Point<3>    reference_point; // m
+  };
+
+  struct OutputParameters
+  {
+    double             interval; // s; 0: every step
+    bool               write_vtk;
+    std::vector<Probe> probes;
+    std::string        progress; // "auto", "on", "off"
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  struct Parameters
+  {
+    SceneParameters           scene;
+    MaterialParameters        material;
+    DampingParameters         damping;
+    LoadParameters            loads;
+    ConstraintParameters      constraints;
+    TimeParameters            time;
+    NonlinearSolverParameters nonlinear_solver;
+    LinearSolverParameters    linear_solver;
+    OutputParameters          output;
+
+    static void declare_parameters(ParameterHandler &prm);
+    void        parse_parameters(ParameterHandler &prm);
+  };
+
+  // The parameter file as read, with command-line overrides applied.
+  struct ParameterInput
+  {
+    std::string                      file;      // as given on the command line
+    std::string                      directory; // its directory, for relative paths in it
+    std::vector<std::string>         overrides; // "Section/Name=value"
+    Parameters                       parameters;
+  };
+
+  // Declares everything in `prm`, reads `file` (.prm or .json), applies `overrides`, parses.
+  // Throws InputError naming the file (or "--set") and the entry on any problem.
+  ParameterInput
+  read_parameters(ParameterHandler               &prm,
+                  const std::string              &file,
+                  const std::vector<std::string> &overrides);
+} // namespace clothsim

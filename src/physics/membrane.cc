@@ -1,0 +1,204 @@
+#include "physics/membrane.h"
+
+#include <cmath>
+
+namespace clothsim::physics
+{
+  namespace
+  {
+    // First fundamental form a_ab = a_a . a_b of the edge basis a_1 = x1 - x0, a_2 = x2 - x0.
+    struct EdgeBasis
+    {
+      Tensor<1, 3> a[2];
+      Tensor<2, 2> metric;
+    };
+
+    EdgeBasis
+    edge_basis(const TrianglePositions &x)
+    {
+      EdgeBasis basis;
+      basis.a[0] = x[1] - x[0];
+      basis.a[1] = x[2] - x[0];
+      for (unsigned int i = 0; i < 2; ++i)
+        for (unsigned int j = 0; j < 2; ++j)
+          basis.metric[i][j] = basis.a[i] * basis.a[j];
+      return basis;
+    }
+
+    // Lamé-like coefficients per unit stretch stiffness: λ' = ν/(1-ν²), μ' = 1/(2(1+ν)).
+    struct Coefficients
+    {
+      double lambda;
+      double mu;
+    };
+
+    Coefficients
+    coefficients(const MembraneMaterial &material)
+    {
+      const double nu = material.poisson_ratio;
+      const double k  = material.stretch_stiffness;
+      return {k * nu / (1. - nu * nu), k / (2. * (1. + nu))};
+    }
+
+    // Green strain E (covariant), mixed M = Ā⁻¹ E, stress S (contravariant) and energy density.
+    struct StrainState
+    {
+      Tensor<2, 2> strain;
+      Tensor<2, 2> stress;
+      double       trace_m;
+      double       trace_m2;
+      double       energy_density; // J/m²
+    };
+
+    StrainState
+    strain_state(const Coefficients     &c,
+                 const MembraneRestData &rest,
+                 const Tensor<2, 2>     &metric)
+    {
+      const Tensor<2, 2> &Q = rest.inverse_metric;
+      StrainState         s;
+      // E = (a - Ā)/2; tr(M) = Q:E, tr(M²) = (QEQ):E.
+      s.strain = 0.5 * (metric - rest.metric);
+      const Tensor<2, 2> QEQ = Q * s.strain * Q;
+      s.trace_m              = scalar_product(Q, s.strain);
+      s.trace_m2             = scalar_product(QEQ, s.strain);
+      s.energy_density = 0.5 * c.lambda * s.trace_m * s.trace_m + c.mu * s.trace_m2;
+      s.stress         = c.lambda * s.trace_m * Q + 2. * c.mu * QEQ;
+      return s;
+    }
+
+    // Positive part of a symmetric 2x2 tensor (eigenvalues clamped at zero).
+    Tensor<2, 2>
+    positive_part(const Tensor<2, 2> &S)
+    {
+      const double mean = 0.5 * (S[0][0] + S[1][1]);
+      const double half_diff = 0.5 * (S[0][0] - S[1][1]);
+      const double radius    = std::sqrt(half_diff * half_diff + S[0][1] * S[0][1]);
+      const double l1 = mean + radius, l2 = mean - radius;
+      if (l2 >= 0.)
+        return S;
+      if (l1 <= 0.)
+        return Tensor<2, 2>();
+      // Projector onto the eigenvector of l1: (S - l2 I) / (l1 - l2).
+      Tensor<2, 2> P = S;
+      P[0][0] -= l2;
+      P[1][1] -= l2;
+      P *= l1 / (l1 - l2);
+      return P;
+    }
+  } // namespace
+
+
+  MembraneRestData
+  membrane_rest_data(const TrianglePositions &reference)
+  {
+    const EdgeBasis basis = edge_basis(reference);
+    const double    det   = determinant(basis.metric);
+    MembraneRestData rest;
+    rest.area = det > 0. ? 0.5 * std::sqrt(det) : 0.;
+    rest.metric = basis.metric;
+    if (det > 0.)
+      rest.inverse_metric = invert(basis.metric);
+    return rest;
+  }
+
+
+  double
+  membrane_energy(const MembraneMaterial &material,
+                  const MembraneRestData &rest,
+                  const TrianglePositions &current)
+  {
+    const EdgeBasis   basis = edge_basis(current);
+    const StrainState s =
+      strain_state(coefficients(material), rest, basis.metric);
+    return rest.area * s.energy_density;
+  }
+
+
+  double
+  membrane_energy_gradient_hessian(const MembraneMaterial &material,
+                                   const MembraneRestData &rest,
+                                   const TrianglePositions &current,
+                                   const MembraneTangent    tangent,
+                                   ElementVector           &gradient,
+                                   ElementMatrix           *hessian)
+  {
+    const Coefficients c     = coefficients(material);
+    const Tensor<2, 2> &Q    = rest.inverse_metric;
+    const EdgeBasis    basis = edge_basis(current);
+    const StrainState  s     = strain_state(c, rest, basis.metric);
+    const double       A     = rest.area;
+
+    // f_a = dW/da_a = |T̄| S^ab a_b; x1 and x2 get f_1, f_2, x0 gets -(f_1 + f_2).
+    Tensor<1, 3> f[2];
+    for (unsigned int a = 0; a < 2; ++a)
+      f[a] = A * (s.stress[a][0] * basis.a[0] + s.stress[a][1] * basis.a[1]);
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        gradient[d]     = -f[0][d] - f[1][d];
+        gradient[3 + d] = f[0][d];
+        gradient[6 + d] = f[1][d];
+      }
+
+    if (hessian != nullptr)
+      {
+        const Tensor<2, 2> S_geo =
+          (tangent == MembraneTangent::projected) ? positive_part(s.stress) : s.stress;
+
+        // Blocks H_ac = d²W/da_a da_c (3x3) for a, c in {1, 2}.
+        Tensor<2, 3> H[2][2];
+        for (unsigned int a = 0; a < 2; ++a)
+          for (unsigned int cc = 0; cc < 2; ++cc)
+            {
+              Tensor<2, 3> block;
+              for (unsigned int b = 0; b < 2; ++b)
+                for (unsigned int d = 0; d < 2; ++d)
+                  {
+                    const double C_abcd =
+                      c.lambda * Q[a][b] * Q[cc][d] +
+                      c.mu * (Q[a][cc] * Q[b][d] + Q[a][d] * Q[b][cc]);
+                    if (C_abcd != 0.)
+                      block += C_abcd * outer_product(basis.a[b], basis.a[d]);
+                  }
+              for (unsigned int i = 0; i < 3; ++i)
+                block[i][i] += S_geo[a][cc];
+              H[a][cc] = A * block;
+            }
+
+        // Chain rule through a_1 = x1 - x0, a_2 = x2 - x0: vertex v has weights w_v on (a_1, a_2):
+        // w_0 = (-1, -1), w_1 = (1, 0), w_2 = (0, 1).
+        static constexpr double w[3][2] = {{-1., -1.}, {1., 0.}, {0., 1.}};
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int u = 0; u < 3; ++u)
+            {
+              Tensor<2, 3> block;
+              for (unsigned int a = 0; a < 2; ++a)
+                for (unsigned int cc = 0; cc < 2; ++cc)
+                  if (w[v][a] * w[u][cc] != 0.)
+                    block += (w[v][a] * w[u][cc]) * H[a][cc];
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int j = 0; j < 3; ++j)
+                  (*hessian)[3 * v + i][3 * u + j] = block[i][j];
+            }
+      }
+    return A * s.energy_density;
+  }
+
+
+  MembraneStrainStress
+  membrane_strain_stress(const MembraneMaterial &material,
+                         const MembraneRestData &rest,
+                         const TrianglePositions &current)
+  {
+    const EdgeBasis   basis = edge_basis(current);
+    const StrainState s =
+      strain_state(coefficients(material), rest, basis.metric);
+    // Mixed stress S Ā has the principal stresses as eigenvalues.
+    const Tensor<2, 2> mixed_stress = s.stress * rest.metric;
+    MembraneStrainStress out;
+    out.green_strain_norm = std::sqrt(std::max(s.trace_m2, 0.));
+    out.stress_norm       = std::sqrt(std::max(scalar_product(mixed_stress, transpose(mixed_stress)), 0.));
+    out.area_ratio = rest.area > 0. ? 0.5 * std::sqrt(std::max(determinant(basis.metric), 0.)) / rest.area : 0.;
+    return out;
+  }
+} // namespace clothsim::physics

@@ -1,0 +1,569 @@
+#include "scene/cloth_model.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria_description.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+
+#include "io/input_error.h"
+
+#include <algorithm>
+#include <limits>
+#include <set>
+
+namespace clothsim
+{
+  ClothModel::ClothModel(const MPI_Comm             communicator,
+                         const Parameters          &parameters,
+                         const std::string         &parameter_file,
+                         const Triangulation<2, 3> &serial_mesh,
+                         const mesh::MeshGroups    &groups)
+    : communicator(communicator)
+    , parameters(parameters)
+    , triangulation(communicator)
+    , fe(FE_SimplexP<2, 3>(1), 3)
+    , mapping(FE_SimplexP<2, 3>(1))
+    , pinned_displacement(3)
+  {
+    material.stretch_stiffness = parameters.material.stretch_stiffness;
+    material.poisson_ratio     = parameters.material.poisson_ratio;
+    build_mesh(serial_mesh);
+    setup_dofs();
+    resolve_pinned(parameter_file, groups);
+  }
+
+
+  void
+  ClothModel::build_mesh(const Triangulation<2, 3> &serial_mesh)
+  {
+    // Every rank holds the same coarse mesh; refine it, partition it with METIS (deterministic),
+    // and keep only this rank's part plus a ghost layer.
+    Triangulation<2, 3> refined;
+    refined.copy_triangulation(serial_mesh);
+    refined.refine_global(parameters.scene.global_refinements);
+    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
+    if (n_ranks > 1)
+      GridTools::partition_triangulation(n_ranks, refined);
+    const auto description =
+      TriangulationDescription::Utilities::create_description_from_triangulation(refined,
+                                                                                  communicator);
+    triangulation.create_triangulation(description);
+  }
+
+
+  void
+  ClothModel::setup_dofs()
+  {
+    dof_handler.reinit(triangulation);
+    dof_handler.distribute_dofs(fe);
+    locally_owned_dofs = dof_handler.locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
+
+    // local dof -> (vertex, component); the P1 base element's dof k sits on vertex k.
+    local_dof_vertex_component.resize(fe.n_dofs_per_cell());
+    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      {
+        const auto component_index = fe.system_to_component_index(i);
+        local_dof_vertex_component[i] = {component_index.second, component_index.first};
+      }
+
+    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+    elements.clear();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          cell->get_dof_indices(dof_indices);
+          Element element;
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+            {
+              const auto [vertex, component]          = local_dof_vertex_component[i];
+              element.dofs[3 * vertex + component] = dof_indices[i];
+            }
+          for (unsigned int v = 0; v < 3; ++v)
+            element.reference[v] = cell->vertex(v);
+          element.rest = physics::membrane_rest_data(element.reference);
+          elements.push_back(element);
+        }
+  }
+
+
+  void
+  ClothModel::resolve_pinned(const std::string &parameter_file, const mesh::MeshGroups &groups)
+  {
+    std::set<types::boundary_id> pinned_boundary_ids;
+    std::vector<Point<3>>        pinned_points;
+    for (const std::string &name : parameters.constraints.pinned_groups)
+      {
+        if (const auto line = groups.line_groups.find(name); line != groups.line_groups.end())
+          pinned_boundary_ids.insert(line->second);
+        else if (const auto point = groups.point_groups.find(name);
+                 point != groups.point_groups.end())
+          pinned_points.insert(pinned_points.end(), point->second.begin(), point->second.end());
+        else
+          {
+            std::string known;
+            for (const std::string &n : groups.all_names())
+              known += (known.empty() ? "" : ", ") + n;
+            throw InputError(parameter_file,
+                             "Constraints/Pinned groups",
+                             "the mesh has no point or line group named '" + name +
+                               "' (its point and line groups: " + (known.empty() ? "none" : known) + ")");
+          }
+      }
+
+    // Matching tolerance for point groups: far below any edge length.
+    const double tolerance =
+      1e-8 * GridTools::diameter(dof_handler.get_triangulation().get_triangulation());
+
+    std::map<types::global_dof_index, PinnedDof> found;
+    std::vector<types::global_dof_index>         dof_indices(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(dof_indices);
+          std::array<bool, 3> vertex_pinned = {{false, false, false}};
+          for (unsigned int v = 0; v < 3; ++v)
+            for (const Point<3> &p : pinned_points)
+              if (cell->vertex(v).distance(p) < tolerance)
+                vertex_pinned[v] = true;
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary() &&
+                pinned_boundary_ids.count(cell->face(f)->boundary_id()) > 0)
+              for (unsigned int fv = 0; fv < 2; ++fv)
+                for (unsigned int v = 0; v < 3; ++v)
+                  if (cell->vertex_index(v) == cell->face(f)->vertex_index(fv))
+                    vertex_pinned[v] = true;
+          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+            {
+              const auto [vertex, component] = local_dof_vertex_component[i];
+              if (vertex_pinned[vertex])
+                found[dof_indices[i]] = {dof_indices[i], component, cell->vertex(vertex)};
+            }
+        }
+
+    pinned.clear();
+    constraints.clear();
+    constraints.reinit(locally_relevant_dofs);
+    for (const auto &[dof, pin] : found)
+      {
+        pinned.push_back(pin);
+        constraints.add_line(dof);
+      }
+    constraints.close();
+
+    // Every named pinned group must pin something somewhere.
+    if (!parameters.constraints.pinned_groups.empty() &&
+        Utilities::MPI::sum(static_cast<unsigned int>(pinned.size()), communicator) == 0)
+      throw InputError(parameter_file,
+                       "Constraints/Pinned groups",
+                       "the named groups contain no mesh vertex");
+
+    try
+      {
+        pinned_displacement.initialize("x,y,z,t",
+                                       parameters.constraints.pinned_displacement,
+                                       {{"pi", numbers::PI}},
+                                       /*time_dependent=*/true);
+      }
+    catch (const std::exception &)
+      {
+        throw InputError(parameter_file,
+                         "Constraints/Pinned displacement",
+                         "cannot parse '" + parameters.constraints.pinned_displacement +
+                           "' as three expressions in x, y, z, t");
+      }
+  }
+
+
+  unsigned int
+  ClothModel::n_pinned_dofs() const
+  {
+    unsigned int n_owned = 0;
+    for (const PinnedDof &pin : pinned)
+      if (locally_owned_dofs.is_element(pin.dof))
+        ++n_owned;
+    return Utilities::MPI::sum(n_owned, communicator);
+  }
+
+
+  void
+  ClothModel::initialize_owned(VectorType &vector) const
+  {
+    vector.reinit(locally_owned_dofs, communicator);
+  }
+
+
+  void
+  ClothModel::initialize_ghosted(VectorType &vector) const
+  {
+    vector.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
+  }
+
+
+  void
+  ClothModel::initialize_matrix(MatrixType &matrix) const
+  {
+    TrilinosWrappers::SparsityPattern sparsity(locally_owned_dofs,
+                                               locally_owned_dofs,
+                                               locally_relevant_dofs,
+                                               communicator);
+    DoFTools::make_sparsity_pattern(dof_handler, sparsity, constraints, false);
+    sparsity.compress();
+    matrix.reinit(sparsity);
+  }
+
+
+  void
+  ClothModel::apply_pinned_displacement(const double time, VectorType &u) const
+  {
+    pinned_displacement.set_time(time);
+    for (const PinnedDof &pin : pinned)
+      if (locally_owned_dofs.is_element(pin.dof))
+        u[pin.dof] = pinned_displacement.value(pin.reference, pin.component);
+    u.compress(VectorOperation::insert);
+  }
+
+
+  void
+  ClothModel::gather(const VectorType                             &vector,
+                     const std::array<types::global_dof_index, 9> &dofs,
+                     std::array<double, 9>                        &values) const
+  {
+    for (unsigned int i = 0; i < 9; ++i)
+      values[i] = vector(dofs[i]);
+  }
+
+
+  namespace
+  {
+    // Element mass matrix per component: lumped ρ|T|/3 δ_ab, or consistent ρ|T|/12 (1 + δ_ab).
+    inline double
+    mass_entry(const bool lumped, const double vertex_mass, const unsigned int a, const unsigned int b)
+    {
+      if (lumped)
+        return a == b ? vertex_mass : 0.;
+      return vertex_mass * (a == b ? 0.5 : 0.25);
+    }
+  } // namespace
+
+
+  void
+  ClothModel::prepare_damping(const VectorType &u_n)
+  {
+    const double beta = parameters.damping.stiffness_proportional;
+    if (beta == 0.)
+      {
+        damping_tangents.clear();
+        return;
+      }
+    damping_tangents.resize(elements.size());
+    std::array<double, 9>     u_e;
+    physics::ElementVector    gradient;
+    for (unsigned int e = 0; e < elements.size(); ++e)
+      {
+        const Element &element = elements[e];
+        gather(u_n, element.dofs, u_e);
+        physics::TrianglePositions x = element.reference;
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int d = 0; d < 3; ++d)
+            x[v][d] += u_e[3 * v + d];
+        physics::membrane_energy_gradient_hessian(material,
+                                                  element.rest,
+                                                  x,
+                                                  physics::MembraneTangent::projected,
+                                                  gradient,
+                                                  &damping_tangents[e]);
+      }
+  }
+
+
+  double
+  ClothModel::assemble(const VectorType &u,
+                       const StepTerms  &terms,
+                       VectorType       *gradient,
+                       MatrixType       *hessian) const
+  {
+    const bool   lumped  = parameters.material.lumped_mass;
+    const double rho     = parameters.material.areal_density;
+    const double alpha   = parameters.damping.mass_proportional;
+    const double beta    = parameters.damping.stiffness_proportional;
+    const auto   tangent = parameters.nonlinear_solver.projected_tangent ?
+                             physics::MembraneTangent::projected :
+                             physics::MembraneTangent::exact;
+    // Mass-like coefficient of the quadratic terms: w_i M + w_d α M.
+    const double mass_weight = terms.inertia_weight + terms.damping_weight * alpha;
+    const bool   use_inertia  = terms.inertia_weight > 0.;
+    const bool   use_damping  = terms.damping_weight > 0. && (alpha > 0. || beta > 0.);
+    Assert(!use_inertia || terms.predictor != nullptr, ExcInternalError());
+    Assert(!use_damping || terms.previous != nullptr, ExcInternalError());
+    Assert(beta == 0. || damping_tangents.size() == elements.size(), ExcInternalError());
+
+    if (gradient != nullptr)
+      *gradient = 0.;
+    if (hessian != nullptr)
+      *hessian = 0.;
+
+    std::array<double, 9>                 u_e, predictor_e, previous_e;
+    physics::ElementVector                g_e;
+    physics::ElementMatrix                H_e;
+    Vector<double>                        cell_vector(9);
+    FullMatrix<double>                    cell_matrix(9, 9);
+    std::vector<types::global_dof_index> dof_vector(9);
+    double                                value = 0.;
+
+    for (unsigned int e = 0; e < elements.size(); ++e)
+      {
+        const Element &element = elements[e];
+        gather(u, element.dofs, u_e);
+        physics::TrianglePositions x = element.reference;
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int d = 0; d < 3; ++d)
+            x[v][d] += u_e[3 * v + d];
+
+        // Membrane energy W_e.
+        if (gradient != nullptr || hessian != nullptr)
+          value += physics::membrane_energy_gradient_hessian(
+            material, element.rest, x, tangent, g_e, hessian != nullptr ? &H_e : nullptr);
+        else
+          value += physics::membrane_energy(material, element.rest, x);
+
+        const double vertex_mass = rho * element.rest.area / 3.;
+        // Gravity: -λ f_gᵀ u_e with f_g = m_v g on each vertex.
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              const double load = terms.load_factor * vertex_mass * parameters.loads.gravity[d];
+              value -= load * u_e[3 * v + d];
+              g_e[3 * v + d] -= load;
+            }
+
+        // Quadratic terms w_i/2 rᵀ M r + w_d α/2 sᵀ M s with r = u - û, s = u - u_n (a term
+        // that is off has its centre at u, so r or s vanishes).
+        if (use_inertia)
+          gather(*terms.predictor, element.dofs, predictor_e);
+        else
+          predictor_e = u_e;
+        if (use_damping)
+          gather(*terms.previous, element.dofs, previous_e);
+        else
+          previous_e = u_e;
+        const double damping_mass_weight = terms.damping_weight * alpha;
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int w = 0; w < 3; ++w)
+            {
+              const double m_vw = mass_entry(lumped, vertex_mass, v, w);
+              if (m_vw == 0.)
+                continue;
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  const unsigned int i = 3 * v + d, j = 3 * w + d;
+                  const double       r_i = u_e[i] - predictor_e[i], r_j = u_e[j] - predictor_e[j];
+                  const double       s_i = u_e[i] - previous_e[i], s_j = u_e[j] - previous_e[j];
+                  value += 0.5 * m_vw *
+                           (terms.inertia_weight * r_i * r_j + damping_mass_weight * s_i * s_j);
+                  g_e[i] += m_vw * (terms.inertia_weight * r_j + damping_mass_weight * s_j);
+                  if (hessian != nullptr)
+                    H_e[i][j] += mass_weight * m_vw;
+                }
+            }
+
+        if (use_damping && beta > 0.)
+          {
+            const physics::ElementMatrix &K = damping_tangents[e];
+            const double                  c = terms.damping_weight * beta;
+            for (unsigned int i = 0; i < 9; ++i)
+              {
+                double Kdu = 0.;
+                for (unsigned int j = 0; j < 9; ++j)
+                  {
+                    Kdu += K[i][j] * (u_e[j] - previous_e[j]);
+                    if (hessian != nullptr)
+                      H_e[i][j] += c * K[i][j];
+                  }
+                g_e[i] += c * Kdu;
+                value += 0.5 * c * (u_e[i] - previous_e[i]) * Kdu;
+              }
+          }
+
+        std::copy(element.dofs.begin(), element.dofs.end(), dof_vector.begin());
+        if (gradient != nullptr)
+          {
+            for (unsigned int i = 0; i < 9; ++i)
+              cell_vector[i] = g_e[i];
+            constraints.distribute_local_to_global(cell_vector, dof_vector, *gradient);
+          }
+        if (hessian != nullptr)
+          {
+            for (unsigned int i = 0; i < 9; ++i)
+              for (unsigned int j = 0; j < 9; ++j)
+                cell_matrix(i, j) = H_e[i][j];
+            constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
+          }
+      }
+    if (gradient != nullptr)
+      gradient->compress(VectorOperation::add);
+    if (hessian != nullptr)
+      hessian->compress(VectorOperation::add);
+    return Utilities::MPI::sum(value, communicator);
+  }
+
+
+  Energies
+  ClothModel::energies(const VectorType &u, const VectorType &v) const
+  {
+    const bool             lumped = parameters.material.lumped_mass;
+    const double           rho    = parameters.material.areal_density;
+    std::array<double, 9> u_e, v_e;
+    Energies               local;
+    for (const Element &element : elements)
+      {
+        gather(u, element.dofs, u_e);
+        gather(v, element.dofs, v_e);
+        physics::TrianglePositions x = element.reference;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int d = 0; d < 3; ++d)
+            x[a][d] += u_e[3 * a + d];
+        local.elastic += physics::membrane_energy(material, element.rest, x);
+        const double vertex_mass = rho * element.rest.area / 3.;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              local.potential -= vertex_mass * parameters.loads.gravity[d] * u_e[3 * a + d];
+              for (unsigned int b = 0; b < 3; ++b)
+                local.kinetic +=
+                  0.5 * mass_entry(lumped, vertex_mass, a, b) * v_e[3 * a + d] * v_e[3 * b + d];
+            }
+      }
+    Energies global;
+    global.kinetic   = Utilities::MPI::sum(local.kinetic, communicator);
+    global.elastic   = Utilities::MPI::sum(local.elastic, communicator);
+    global.potential = Utilities::MPI::sum(local.potential, communicator);
+    return global;
+  }
+
+
+  double
+  ClothModel::min_area_ratio(const VectorType &u) const
+  {
+    std::array<double, 9> u_e;
+    double                 smallest = std::numeric_limits<double>::max();
+    for (const Element &element : elements)
+      {
+        gather(u, element.dofs, u_e);
+        physics::TrianglePositions x = element.reference;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int d = 0; d < 3; ++d)
+            x[a][d] += u_e[3 * a + d];
+        const double ratio = physics::membrane_strain_stress(material, element.rest, x).area_ratio;
+        smallest           = std::min(smallest, std::isfinite(ratio) ? ratio : -1.);
+      }
+    return Utilities::MPI::min(smallest, communicator);
+  }
+
+
+  void
+  ClothModel::cell_strain_stress(const VectorType &u,
+                                 Vector<float>    &strain,
+                                 Vector<float>    &stress) const
+  {
+    strain.reinit(triangulation.n_active_cells());
+    stress.reinit(triangulation.n_active_cells());
+    std::array<double, 9> u_e;
+    unsigned int           e = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const Element &element = elements[e++];
+          gather(u, element.dofs, u_e);
+          physics::TrianglePositions x = element.reference;
+          for (unsigned int a = 0; a < 3; ++a)
+            for (unsigned int d = 0; d < 3; ++d)
+              x[a][d] += u_e[3 * a + d];
+          const auto measures = physics::membrane_strain_stress(material, element.rest, x);
+          strain[cell->active_cell_index()] = measures.green_strain_norm;
+          stress[cell->active_cell_index()] = measures.stress_norm;
+        }
+  }
+
+
+  std::vector<ProbeLocation>
+  ClothModel::locate_probes(const std::vector<Probe> &probes) const
+  {
+    std::vector<ProbeLocation> located;
+    const unsigned int         rank = Utilities::MPI::this_mpi_process(communicator);
+    for (const Probe &probe : probes)
+      {
+        // Nearest locally owned vertex (its x dof owned here), then the global minimum.
+        double                                  best = std::numeric_limits<double>::max();
+        ProbeLocation                           candidate{probe.name, Point<3>(), {{0, 0, 0}}};
+        for (const Element &element : elements)
+          for (unsigned int v = 0; v < 3; ++v)
+            if (locally_owned_dofs.is_element(element.dofs[3 * v]))
+              {
+                const double distance = element.reference[v].distance(probe.reference_point);
+                if (distance < best)
+                  {
+                    best                      = distance;
+                    candidate.reference_point = element.reference[v];
+                    for (unsigned int d = 0; d < 3; ++d)
+                      candidate.dofs[d] = element.dofs[3 * v + d];
+                  }
+              }
+        // Ties between ranks go to the lowest rank.
+        const auto all = Utilities::MPI::all_gather(communicator, std::make_pair(best, rank));
+        const auto winner = std::min_element(all.begin(), all.end())->second;
+        located.push_back(Utilities::MPI::broadcast(communicator, candidate, winner));
+      }
+    return located;
+  }
+
+
+  std::vector<double>
+  ClothModel::gather_values(const VectorType                           &u,
+                            const std::vector<types::global_dof_index> &dofs) const
+  {
+    std::vector<double> values(dofs.size(), 0.);
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      if (locally_owned_dofs.is_element(dofs[i]))
+        values[i] = u(dofs[i]);
+    std::vector<double> sums(dofs.size(), 0.);
+    MPI_Allreduce(values.data(), sums.data(), values.size(), MPI_DOUBLE, MPI_SUM, communicator);
+    return sums;
+  }
+
+
+  std::vector<std::vector<bool>>
+  ClothModel::constant_modes() const
+  {
+    // DoFTools::extract_constant_modes is not instantiated for <2,3> in deal.II 9.4.
+    std::vector<std::vector<bool>> modes(3,
+                                         std::vector<bool>(locally_owned_dofs.n_elements(), false));
+    for (const Element &element : elements)
+      for (unsigned int v = 0; v < 3; ++v)
+        for (unsigned int c = 0; c < 3; ++c)
+          if (locally_owned_dofs.is_element(element.dofs[3 * v + c]))
+            modes[c][locally_owned_dofs.index_within_set(element.dofs[3 * v + c])] = true;
+    return modes;
+  }
+
+
+  double
+  ClothModel::total_mass() const
+  {
+    return parameters.material.areal_density * reference_area();
+  }
+
+
+  double
+  ClothModel::reference_area() const
+  {
+    double area = 0.;
+    for (const Element &element : elements)
+      area += element.rest.area;
+    return Utilities::MPI::sum(area, communicator);
+  }
+} // namespace clothsim

@@ -1,0 +1,402 @@
+#include "solvers/newton_solver.h"
+
+#include <NOX.H>
+#include <NOX_Epetra_Group.H>
+#include <NOX_Epetra_Interface_Required.H>
+#include <NOX_Epetra_LinearSystem.H>
+#include <NOX_Epetra_Vector.H>
+#include <NOX_MeritFunction_Generic.H>
+#include <NOX_StatusTest_Combo.H>
+#include <NOX_StatusTest_FiniteValue.H>
+#include <NOX_StatusTest_MaxIters.H>
+#include <NOX_StatusTest_NormF.H>
+#include <Teuchos_ParameterList.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace clothsim
+{
+  namespace
+  {
+    using TrilinosVector = TrilinosWrappers::MPI::Vector;
+
+    void
+    copy(const Epetra_Vector &from, TrilinosVector &to)
+    {
+      std::copy(from.Values(), from.Values() + from.MyLength(), to.begin());
+    }
+
+    void
+    copy(const TrilinosVector &from, Epetra_Vector &to)
+    {
+      std::copy(from.begin(), from.end(), to.Values());
+    }
+
+    const Epetra_Vector &
+    epetra(const NOX::Abstract::Vector &vector)
+    {
+      return dynamic_cast<const NOX::Epetra::Vector &>(vector).getEpetraVector();
+    }
+
+    // Shared state of one solve: the problem and work vectors in deal.II's layout.
+    struct Context
+    {
+      NonlinearProblem               &problem;
+      TrilinosWrappers::SparseMatrix &matrix;
+      LinearSolver                   &linear_solver;
+      TrilinosVector                  u, rhs, solution;
+      unsigned int                    linear_iterations = 0;
+      bool                            preconditioner_current = false;
+      std::string                     failure;
+    };
+
+    // NOX's residual callback.
+    class Interface : public NOX::Epetra::Interface::Required
+    {
+    public:
+      explicit Interface(Context &context)
+        : context(context)
+      {}
+
+      bool
+      computeF(const Epetra_Vector &x,
+               Epetra_Vector       &F,
+               const NOX::Epetra::Interface::Required::FillType) override
+      {
+        copy(x, context.u);
+        context.problem.residual(context.u, context.rhs);
+        copy(context.rhs, F);
+        return true;
+      }
+
+    private:
+      Context &context;
+    };
+
+    // NOX's linear system: the tangent as a TrilinosWrappers matrix, solved by LinearSolver.
+    class LinearSystem : public NOX::Epetra::LinearSystem
+    {
+    public:
+      explicit LinearSystem(Context &context)
+        : context(context)
+      {}
+
+      bool
+      applyJacobian(const NOX::Epetra::Vector &input, NOX::Epetra::Vector &result) const override
+      {
+        return context.matrix.trilinos_matrix().Apply(input.getEpetraVector(),
+                                                      result.getEpetraVector()) == 0;
+      }
+
+      bool
+      applyJacobianTranspose(const NOX::Epetra::Vector &input,
+                             NOX::Epetra::Vector       &result) const override
+      {
+        // The tangent is symmetric.
+        return applyJacobian(input, result);
+      }
+
+      bool
+      applyJacobianInverse(Teuchos::ParameterList &,
+                           const NOX::Epetra::Vector &input,
+                           NOX::Epetra::Vector       &result) override
+      {
+        if (!context.preconditioner_current)
+          {
+            context.linear_solver.update_preconditioner(context.matrix);
+            context.preconditioner_current = true;
+          }
+        copy(input.getEpetraVector(), context.rhs);
+        unsigned int iterations = 0;
+        const bool   ok =
+          context.linear_solver.solve(context.matrix, context.solution, context.rhs, iterations);
+        context.linear_iterations += iterations;
+        if (!ok)
+          {
+            context.failure = "linear solver did not converge in " +
+                              std::to_string(iterations) + " iterations";
+            return false;
+          }
+        copy(context.solution, result.getEpetraVector());
+        return true;
+      }
+
+      bool
+      applyRightPreconditioning(bool,
+                                Teuchos::ParameterList &,
+                                const NOX::Epetra::Vector &input,
+                                NOX::Epetra::Vector       &result) const override
+      {
+        result = input;
+        return true;
+      }
+
+      Teuchos::RCP<NOX::Epetra::Scaling>
+      getScaling() override
+      {
+        return Teuchos::null;
+      }
+
+      void
+      resetScaling(const Teuchos::RCP<NOX::Epetra::Scaling> &) override
+      {}
+
+      bool
+      computeJacobian(const NOX::Epetra::Vector &x) override
+      {
+        copy(x.getEpetraVector(), context.u);
+        context.problem.tangent(context.u, context.matrix);
+        context.preconditioner_current = false;
+        return true;
+      }
+
+      bool
+      createPreconditioner(const NOX::Epetra::Vector &,
+                           Teuchos::ParameterList &,
+                           bool) const override
+      {
+        return true;
+      }
+
+      bool
+      destroyPreconditioner() const override
+      {
+        return true;
+      }
+
+      bool
+      recomputePreconditioner(const NOX::Epetra::Vector &, Teuchos::ParameterList &) const override
+      {
+        return true;
+      }
+
+      PreconditionerReusePolicyType
+      getPreconditionerPolicy(bool) override
+      {
+        // The preconditioner is rebuilt in applyJacobianInverse after each new tangent.
+        return PRPT_REUSE;
+      }
+
+      bool
+      isPreconditionerConstructed() const override
+      {
+        return true;
+      }
+
+      bool
+      hasPreconditioner() const override
+      {
+        return false;
+      }
+
+      Teuchos::RCP<const Epetra_Operator>
+      getJacobianOperator() const override
+      {
+        return Teuchos::rcp(&context.matrix.trilinos_matrix(), false);
+      }
+
+      Teuchos::RCP<Epetra_Operator>
+      getJacobianOperator() override
+      {
+        return Teuchos::rcp(
+          const_cast<Epetra_CrsMatrix *>(&context.matrix.trilinos_matrix()), false);
+      }
+
+      Teuchos::RCP<const Epetra_Operator>
+      getGeneratedPrecOperator() const override
+      {
+        return Teuchos::null;
+      }
+
+      Teuchos::RCP<Epetra_Operator>
+      getGeneratedPrecOperator() override
+      {
+        return Teuchos::null;
+      }
+
+      void
+      setJacobianOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
+      {}
+
+      void
+      setPrecOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
+      {}
+
+    private:
+      Context &context;
+    };
+
+    // The line search's merit function: the problem's objective. Its gradient is F, so the
+    // slope along a direction d is F·d.
+    class ObjectiveMerit : public NOX::MeritFunction::Generic
+    {
+    public:
+      explicit ObjectiveMerit(Context &context)
+        : context(context)
+      {}
+
+      double
+      computef(const NOX::Abstract::Group &group) const override
+      {
+        TrilinosVector &u = context.u;
+        copy(epetra(group.getX()), u);
+        const double value = context.problem.objective(u);
+        return std::isfinite(value) ? value : std::numeric_limits<double>::max();
+      }
+
+      void
+      computeGradient(const NOX::Abstract::Group &group,
+                      NOX::Abstract::Vector      &result) const override
+      {
+        result = group.getF();
+      }
+
+      double
+      computeSlope(const NOX::Abstract::Vector &direction,
+                   const NOX::Abstract::Group  &group) const override
+      {
+        return group.getF().innerProduct(direction);
+      }
+
+      double
+      computeQuadraticModel(const NOX::Abstract::Vector &direction,
+                            const NOX::Abstract::Group  &group) const override
+      {
+        auto Jd = direction.clone(NOX::ShapeCopy);
+        group.applyJacobian(direction, *Jd);
+        return computef(group) + computeSlope(direction, group) +
+               0.5 * direction.innerProduct(*Jd);
+      }
+
+      void
+      computeQuadraticMinimizer(const NOX::Abstract::Group &group,
+                                NOX::Abstract::Vector      &result) const override
+      {
+        // Only the dogleg/trust-region methods ask for this; we use a line search.
+        result = group.getNewton();
+        result.scale(1.);
+      }
+
+      const std::string &
+      name() const override
+      {
+        return merit_name;
+      }
+
+    private:
+      Context          &context;
+      const std::string merit_name = "incremental potential";
+    };
+  } // namespace
+
+
+  NewtonSolver::NewtonSolver(const NonlinearSolverParameters &nonlinear,
+                             const LinearSolverParameters    &linear,
+                             std::vector<std::vector<bool>>   constant_modes,
+                             TrilinosWrappers::SparseMatrix  &tangent_matrix)
+    : parameters(nonlinear)
+    , linear_solver(linear, std::move(constant_modes))
+    , tangent_matrix(tangent_matrix)
+  {}
+
+
+  NewtonResult
+  NewtonSolver::solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u)
+  {
+    Context context{problem, tangent_matrix, linear_solver, u, u, u, 0, false, ""};
+
+    auto interface     = Teuchos::rcp(new Interface(context));
+    auto linear_system = Teuchos::rcp(new LinearSystem(context));
+    auto merit         = Teuchos::rcp(new ObjectiveMerit(context));
+
+    auto nox_parameters = Teuchos::rcp(new Teuchos::ParameterList);
+    nox_parameters->set("Nonlinear Solver", "Line Search Based");
+    nox_parameters->sublist("Printing").set("Output Information", NOX::Utils::Error);
+    nox_parameters->sublist("Direction").set("Method", "Newton");
+    nox_parameters->sublist("Direction").sublist("Newton").set("Rescue Bad Newton Solve", false);
+    Teuchos::ParameterList &line_search = nox_parameters->sublist("Line Search");
+    if (parameters.line_search == "full step")
+      line_search.set("Method", "Full Step");
+    else if (parameters.line_search == "backtrack")
+      {
+        line_search.set("Method", "Backtrack");
+        line_search.sublist("Backtrack").set("Max Iters", 30);
+        line_search.sublist("Backtrack").set("Recovery Step", 0.);
+      }
+    else
+      {
+        line_search.set("Method", "Polynomial");
+        Teuchos::ParameterList &polynomial = line_search.sublist("Polynomial");
+        polynomial.set("Sufficient Decrease Condition", "Armijo-Goldstein");
+        polynomial.set("Max Iters", 30);
+        polynomial.set("Minimum Step", 1e-12);
+        polynomial.set("Recovery Step Type", "Constant");
+        polynomial.set("Recovery Step", 0.);
+      }
+    nox_parameters->sublist("Solver Options")
+      .set<Teuchos::RCP<NOX::MeritFunction::Generic>>("User Defined Merit Function", merit);
+    nox_parameters->sublist("Solver Options").set("Status Test Check Type", "Complete");
+
+    Epetra_Vector            initial(Copy, u.trilinos_vector(), 0);
+    const NOX::Epetra::Vector initial_guess(initial);
+    auto group = Teuchos::rcp(new NOX::Epetra::Group(
+      nox_parameters->sublist("Printing"), interface, initial_guess, linear_system));
+
+    // Converged when ||F|| < absolute or < relative * ||F(u_0)||; failed on NaN or too many
+    // iterations.
+    group->computeF();
+    const double initial_norm = group->getNormF();
+    const double tolerance =
+      std::max(parameters.absolute_tolerance, parameters.relative_tolerance * initial_norm);
+    auto converged = Teuchos::rcp(new NOX::StatusTest::NormF(tolerance));
+    auto max_iterations =
+      Teuchos::rcp(new NOX::StatusTest::MaxIters(parameters.max_iterations));
+    auto finite = Teuchos::rcp(new NOX::StatusTest::FiniteValue);
+    auto status = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
+    status->addStatusTest(finite);
+    status->addStatusTest(converged);
+    status->addStatusTest(max_iterations);
+
+    NewtonResult result;
+    if (!std::isfinite(initial_norm))
+      {
+        result.failure = "residual is not finite at the initial guess";
+        return result;
+      }
+
+    auto                            solver = NOX::Solver::buildSolver(group, status, nox_parameters);
+    NOX::StatusTest::StatusType     outcome = NOX::StatusTest::Unconverged;
+    try
+      {
+        outcome = solver->solve();
+      }
+    catch (const std::exception &e)
+      {
+        context.failure = e.what();
+        outcome         = NOX::StatusTest::Failed;
+      }
+
+    const auto &final_group =
+      dynamic_cast<const NOX::Epetra::Group &>(solver->getSolutionGroup());
+    copy(epetra(final_group.getX()), u);
+    result.iterations        = solver->getNumIterations();
+    result.linear_iterations = context.linear_iterations;
+    result.residual_norm     = final_group.isF() ? final_group.getNormF() : -1.;
+    result.converged         = outcome == NOX::StatusTest::Converged &&
+                       std::isfinite(result.residual_norm);
+    if (!result.converged)
+      {
+        if (!context.failure.empty())
+          result.failure = context.failure;
+        else if (finite->getStatus() == NOX::StatusTest::Failed)
+          result.failure = "residual became NaN or infinite";
+        else if (max_iterations->getStatus() == NOX::StatusTest::Failed)
+          result.failure =
+            "no convergence in " + std::to_string(parameters.max_iterations) + " iterations";
+        else
+          result.failure = "line search failed";
+      }
+    return result;
+  }
+} // namespace clothsim

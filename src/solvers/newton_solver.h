@@ -1,0 +1,64 @@
+#pragma once
+
+// Newton's method through Trilinos NOX (line-search based, full Newton direction) on the
+// Epetra objects of deal.II's TrilinosWrappers. A thin adapter: NOX asks for the residual F(u),
+// the tangent J(u) and J⁻¹ F; the line search measures progress by the problem's objective
+// (a user merit function), so each step minimises an incremental potential rather than
+// ||F||² (Gast & Schroeder 2014). NOX's "Rescue Bad Newton Solve" is off: a failed linear solve
+// fails the Newton solve, and the caller cuts the step.
+
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include "io/parameters.h"
+#include "solvers/linear_solver.h"
+
+#include <string>
+
+namespace clothsim
+{
+  // What Newton needs from a problem. Vectors are locally owned (not ghosted).
+  class NonlinearProblem
+  {
+  public:
+    virtual ~NonlinearProblem() = default;
+
+    // The objective whose gradient is the residual (J, summed over ranks).
+    virtual double objective(const TrilinosWrappers::MPI::Vector &u) = 0;
+
+    // F(u) = ∇objective, zero at constrained dofs.
+    virtual void residual(const TrilinosWrappers::MPI::Vector &u,
+                          TrilinosWrappers::MPI::Vector       &F) = 0;
+
+    // J(u) = ∇F, with constrained rows and columns eliminated.
+    virtual void tangent(const TrilinosWrappers::MPI::Vector &u,
+                         TrilinosWrappers::SparseMatrix      &J) = 0;
+  };
+
+  struct NewtonResult
+  {
+    bool         converged         = false;
+    unsigned int iterations        = 0;
+    unsigned int linear_iterations = 0; // summed over the Newton iterations
+    double       residual_norm     = 0.; // ||F|| at the returned iterate, N
+    std::string  failure;                // why it failed, if it did
+  };
+
+  class NewtonSolver
+  {
+  public:
+    // `tangent_matrix` must have the problem's sparsity; it is used as NOX's Jacobian.
+    NewtonSolver(const NonlinearSolverParameters &nonlinear,
+                 const LinearSolverParameters    &linear,
+                 std::vector<std::vector<bool>>   constant_modes,
+                 TrilinosWrappers::SparseMatrix  &tangent_matrix);
+
+    // Solves F(u) = 0 starting from u (which satisfies the constraints); u gets the last iterate.
+    NewtonResult solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u);
+
+  private:
+    const NonlinearSolverParameters  parameters;
+    LinearSolver                     linear_solver;
+    TrilinosWrappers::SparseMatrix  &tangent_matrix;
+  };
+} // namespace clothsim

@@ -1,0 +1,228 @@
+#include "time/time_stepper.h"
+
+#include "io/progress.h"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace clothsim
+{
+  namespace
+  {
+    // Newton's view of one step: Φ, ∇Φ, ∇²Φ from the model, with owned <-> ghosted copies.
+    class StepProblem : public NonlinearProblem
+    {
+    public:
+      StepProblem(const ClothModel &model, const StepTerms &terms, TimerOutput &timer)
+        : model(model)
+        , terms(terms)
+        , timer(timer)
+      {
+        model.initialize_ghosted(ghosted);
+      }
+
+      double
+      objective(const VectorType &u) override
+      {
+        TimerOutput::Scope scope(timer, "assemble energy");
+        ghosted = u;
+        return model.assemble(ghosted, terms, nullptr, nullptr);
+      }
+
+      void
+      residual(const VectorType &u, VectorType &F) override
+      {
+        TimerOutput::Scope scope(timer, "assemble residual");
+        ghosted = u;
+        model.assemble(ghosted, terms, &F, nullptr);
+      }
+
+      void
+      tangent(const VectorType &u, MatrixType &J) override
+      {
+        TimerOutput::Scope scope(timer, "assemble tangent");
+        ghosted = u;
+        model.assemble(ghosted, terms, nullptr, &J);
+      }
+
+    private:
+      const ClothModel &model;
+      const StepTerms  &terms;
+      TimerOutput      &timer;
+      VectorType        ghosted;
+    };
+
+  } // namespace
+
+
+  TimeStepper::TimeStepper(const Parameters   &parameters,
+                           ClothModel         &model,
+                           OutputWriter       &output,
+                           ConditionalOStream &pcout,
+                           TimerOutput        &timer)
+    : parameters(parameters)
+    , model(model)
+    , output(output)
+    , pcout(pcout)
+    , timer(timer)
+    , newton(parameters.nonlinear_solver, parameters.linear_solver, model.constant_modes(), tangent)
+  {
+    model.initialize_matrix(tangent);
+    model.initialize_owned(u_n);
+    model.initialize_owned(v_n);
+    model.initialize_owned(u_new);
+    model.initialize_ghosted(u_ghosted);
+    model.initialize_ghosted(v_ghosted);
+    model.initialize_ghosted(u_n_ghosted);
+    model.initialize_ghosted(predictor_ghosted);
+  }
+
+
+  NewtonResult
+  TimeStepper::solve_step(const double time_new, const double dt, const double load_factor)
+  {
+    const bool dynamic = parameters.time.integrator == Integrator::backward_euler;
+    StepTerms  terms;
+    terms.load_factor = load_factor;
+    if (dynamic)
+      {
+        terms.inertia_weight = 1. / (dt * dt);
+        terms.damping_weight = 1. / dt;
+        // û = u_n + dt v_n, which is also Newton's initial guess.
+        VectorType predictor(u_n);
+        predictor.add(dt, v_n);
+        predictor_ghosted = predictor;
+        terms.predictor   = &predictor_ghosted;
+        terms.previous    = &u_n_ghosted;
+        u_new             = predictor;
+      }
+    else
+      u_new = u_n;
+    model.apply_pinned_displacement(dynamic ? time_new : load_factor, u_new);
+
+    StepProblem  problem(model, terms, timer);
+    NewtonResult result = newton.solve(problem, u_new);
+
+    if (result.converged)
+      {
+        u_ghosted         = u_new;
+        const double area = model.min_area_ratio(u_ghosted);
+        if (!(area > 1e-6))
+          {
+            result.converged = false;
+            result.failure   = area < 0. ? "NaN in the solution" :
+                                           "a triangle collapsed (area ratio " +
+                                             std::to_string(area) + ")";
+          }
+      }
+    return result;
+  }
+
+
+  RunSummary
+  TimeStepper::run()
+  {
+    const bool         dynamic = parameters.time.integrator == Integrator::backward_euler;
+    const double       end     = dynamic ? parameters.time.end_time : 1.;
+    const double       nominal_step =
+      dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
+    const double       output_interval = dynamic ? parameters.output.interval : 0.;
+    const unsigned int max_halvings    = parameters.time.max_step_halvings;
+    const double       epsilon         = 1e-9 * nominal_step;
+
+    Timer      wall_clock;
+    RunSummary summary;
+    Progress   progress(std::cout,
+                      parameters.output.progress,
+                      Utilities::MPI::this_mpi_process(model.get_communicator()) == 0);
+
+    // Initial state: at rest in the reference configuration, pins at their t = 0 position.
+    u_n = 0.;
+    v_n = 0.;
+    model.apply_pinned_displacement(0., u_n);
+    u_ghosted = u_n;
+    v_ghosted = v_n;
+    {
+      TimerOutput::Scope scope(timer, "output");
+      output.write_state(0, 0., u_ghosted, v_ghosted);
+    }
+    output.write_statistics({0, 0., 0., 0, 0, 0., 0, model.energies(u_ghosted, v_ghosted), 0.});
+    double next_output = output_interval;
+
+    double       time = 0.;
+    unsigned int step = 0;
+    while (time < end - epsilon)
+      {
+        // One nominal step, in 2^k sub-steps if Newton needs smaller ones.
+        const double target = std::min(time + nominal_step, end);
+        unsigned int halvings = 0;
+        while (time < target - epsilon)
+          {
+            const double dt = std::min((target - time), nominal_step / std::pow(2., halvings));
+            const double time_new = (target - time - dt < epsilon) ? target : time + dt;
+            u_n_ghosted           = u_n;
+            if (dynamic)
+              model.prepare_damping(u_n_ghosted);
+
+            const NewtonResult result = solve_step(time_new, time_new - time, time_new);
+            summary.newton_iterations += result.iterations;
+            summary.linear_iterations += result.linear_iterations;
+            if (!result.converged)
+              {
+                if (halvings == max_halvings)
+                  throw SimulationError(
+                    "Newton failed at t = " + std::to_string(time_new) + " with dt = " +
+                    std::to_string(time_new - time) + " after " + std::to_string(halvings) +
+                    " step halvings (" + result.failure + "); the run stops here, output up "
+                    "to t = " + std::to_string(time) + " is kept");
+                ++halvings;
+                ++summary.retries;
+                progress.finish();
+                pcout << "step " << step + 1 << ": Newton failed at t = " << time_new
+                      << " (" << result.failure << "); retrying with dt = "
+                      << nominal_step / std::pow(2., halvings) << std::endl;
+                continue;
+              }
+
+            // Accept: v = (u_new - u_n)/dt, shift the state.
+            if (dynamic)
+              {
+                v_n = u_new;
+                v_n -= u_n;
+                v_n /= (time_new - time);
+              }
+            const double dt_taken = time_new - time;
+            u_n                   = u_new;
+            time                  = time_new;
+            ++step;
+            u_ghosted = u_n;
+            v_ghosted = v_n;
+            output.write_statistics({step,
+                                     time,
+                                     dt_taken,
+                                     result.iterations,
+                                     result.linear_iterations,
+                                     result.residual_norm,
+                                     halvings,
+                                     model.energies(u_ghosted, v_ghosted),
+                                     wall_clock.wall_time()});
+            const bool last = time >= end - epsilon;
+            if (last || output_interval == 0. || time >= next_output - epsilon)
+              {
+                TimerOutput::Scope scope(timer, "output");
+                output.write_state(step, time, u_ghosted, v_ghosted);
+                while (next_output <= time + epsilon && output_interval > 0.)
+                  next_output += output_interval;
+              }
+            std::ostringstream state;
+            state << "step " << step << "  " << (dynamic ? "t = " : "load = ")
+                  << std::setprecision(4) << time << (dynamic ? " s" : "");
+            progress.update(time / end, state.str());
+          }
+      }
+    progress.finish();
+    summary.steps = step;
+    return summary;
+  }
+} // namespace clothsim

@@ -1,0 +1,73 @@
+#pragma once
+
+// The time loop: predict, solve the step's incremental potential with Newton, accept or cut the
+// step, write output. Backward Euler (Gast & Schroeder 2014's optimisation form):
+//   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} = (u_{n+1} - u_n)/dt.
+// Static mode: the load factor λ goes 1/N, 2/N, ..., 1; each increment minimises W - λ f_gᵀ u.
+// A step whose Newton solve fails (or whose result holds NaN or a collapsed triangle) is retried
+// with half the step, up to 'Maximum step halvings' times, and the log says so.
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include "io/output_writer.h"
+#include "scene/cloth_model.h"
+#include "solvers/newton_solver.h"
+
+#include <stdexcept>
+
+namespace clothsim
+{
+  // The run cannot go on (Newton failed at the smallest step, NaN, collapsed triangles).
+  // Everything written before it stays.
+  class SimulationError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  // Totals of a finished run.
+  struct RunSummary
+  {
+    unsigned int steps             = 0;
+    unsigned int newton_iterations = 0;
+    unsigned int linear_iterations = 0;
+    unsigned int retries           = 0;
+  };
+
+  class TimeStepper
+  {
+  public:
+    TimeStepper(const Parameters &parameters,
+                ClothModel       &model,
+                OutputWriter     &output,
+                ConditionalOStream &pcout,
+                TimerOutput      &timer);
+
+    // Runs the whole simulation from the reference state at rest.
+    RunSummary run();
+
+    // The displacement and velocity at the end (ghosted).
+    const VectorType &
+    displacement() const
+    {
+      return u_ghosted;
+    }
+
+  private:
+    // Solves one step of size dt from state n; returns the Newton result, leaves u_new.
+    NewtonResult solve_step(const double time_new, const double dt, const double load_factor);
+
+    const Parameters   &parameters;
+    ClothModel         &model;
+    OutputWriter       &output;
+    ConditionalOStream &pcout;
+    TimerOutput        &timer;
+
+    MatrixType   tangent;
+    NewtonSolver newton;
+
+    VectorType u_n, v_n, u_new;                      // owned
+    VectorType u_ghosted, v_ghosted, u_n_ghosted, predictor_ghosted; // ghosted
+  };
+} // namespace clothsim

@@ -1,0 +1,320 @@
+// Unit test of clothsim::mesh::read_gmsh: reads the meshes in the directory given as
+// argv[1] (tests/data), checks cell and vertex counts, areas, boundary ids and point
+// groups, that bad meshes are rejected with a telling InputError, and that a .msh is
+// generated from a .geo.
+
+#include "io/input_error.h"
+#include "mesh/gmsh_reader.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/tria.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace dealii;
+using namespace clothsim;
+
+namespace
+{
+  unsigned int n_checks   = 0;
+  unsigned int n_failures = 0;
+
+  void
+    check(const bool ok, const std::string &what)
+  {
+    ++n_checks;
+    if (!ok)
+      ++n_failures;
+    std::cout << (ok ? "  ok    " : "  FAIL  ") << what << std::endl;
+  }
+
+  template <typename T>
+  void
+    check_equal(const std::string &what, const T &value, const T &expected)
+  {
+    std::ostringstream text;
+    text << what << " = " << value << " (expected " << expected << ")";
+    check(value == expected, text.str());
+  }
+
+  void
+    check_near(const std::string &what,
+               const double       value,
+               const double       expected,
+               const double       tolerance)
+  {
+    std::ostringstream text;
+    text.precision(16);
+    text << what << " = " << value << " (expected " << expected << " +- " << tolerance
+         << ")";
+    check(std::abs(value - expected) <= tolerance, text.str());
+  }
+
+
+  double
+    total_area(const Triangulation<2, 3> &triangulation)
+  {
+    double area = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      area += 0.5 * cross_product_3d(cell->vertex(1) - cell->vertex(0),
+                                     cell->vertex(2) - cell->vertex(0))
+                      .norm();
+    return area;
+  }
+
+
+  // Number of active boundary faces per boundary id.
+  std::map<types::boundary_id, unsigned int>
+    count_boundary_faces(const Triangulation<2, 3> &triangulation)
+  {
+    std::map<types::boundary_id, unsigned int> counts;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          ++counts[cell->face(f)->boundary_id()];
+    return counts;
+  }
+
+
+  // Total length of the active boundary faces with boundary id `id`.
+  double
+    boundary_length(const Triangulation<2, 3> &triangulation, const types::boundary_id id)
+  {
+    double length = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == id)
+          length += (cell->face(f)->vertex(1) - cell->face(f)->vertex(0)).norm();
+    return length;
+  }
+
+
+  // True if every active boundary face with boundary id `id` lies on the plane
+  // x[axis]=value.
+  bool
+    boundary_faces_on(const Triangulation<2, 3> &triangulation,
+                      const types::boundary_id   id,
+                      const unsigned int         axis,
+                      const double               value)
+  {
+    for (const auto &cell : triangulation.active_cell_iterators())
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == id)
+          for (const unsigned int v : {0u, 1u})
+            if (std::abs(cell->face(f)->vertex(v)[axis] - value) > 1e-14)
+              return false;
+    return true;
+  }
+
+
+  bool
+    contains(const std::string &text, const std::string &word)
+  {
+    return text.find(word) != std::string::npos;
+  }
+
+
+  // read_gmsh(file) must throw an InputError naming the file and containing all `words`.
+  void
+    check_rejected(const std::string &file, const std::vector<std::string> &words)
+  {
+    const std::string name = std::filesystem::path(file).filename().string();
+    try
+      {
+        Triangulation<2, 3> triangulation;
+        mesh::read_gmsh(file, triangulation);
+        check(false, name + ": rejected (but it was accepted)");
+      }
+    catch (const InputError &error)
+      {
+        const std::string message = error.what();
+        bool              ok      = contains(message, file) && error.file == file;
+        for (const std::string &word : words)
+          ok = ok && contains(message, word);
+        check(ok, name + ": rejected with \"" + message + "\"");
+      }
+  }
+
+
+  void
+    test_square(const std::string &data)
+  {
+    std::cout << "square.msh (gmsh 2.2, 3x3 nodes + 1 unused node, 8 triangles):"
+              << std::endl;
+    Triangulation<2, 3>    triangulation;
+    const mesh::MeshGroups groups = mesh::read_gmsh(data + "/square.msh", triangulation);
+
+    check_equal("cells", triangulation.n_active_cells(), 8u);
+    check_equal("vertices", triangulation.n_vertices(), 9u);
+    check_equal("used vertices", triangulation.n_used_vertices(), 9u);
+    check_near("total area", total_area(triangulation), 1.0, 1e-12);
+    bool all_triangles = true;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      all_triangles = all_triangles && cell->reference_cell() == ReferenceCells::Triangle;
+    check(all_triangles, "all cells are triangles");
+
+    check_equal("line groups", groups.line_groups.size(), std::size_t(3));
+    check(groups.line_groups.count("left") == 1 && groups.line_groups.at("left") == 11,
+          "line group 'left' has boundary id 11 (its physical tag)");
+    check(groups.line_groups.count("bottom") == 1 &&
+            groups.line_groups.at("bottom") == 12,
+          "line group 'bottom' has boundary id 12");
+    check(groups.line_groups.count("13") == 1 && groups.line_groups.at("13") == 13,
+          "unnamed line group 13 is called '13' with boundary id 13");
+    const std::vector<std::string> expected_names = {"13", "bottom", "corner", "left"};
+    check(groups.all_names() == expected_names,
+          "all_names() = {13, bottom, corner, left}");
+
+    auto counts = count_boundary_faces(triangulation);
+    check_equal("boundary faces with id 11 (left)", counts[11], 2u);
+    check_equal("boundary faces with id 12 (bottom)", counts[12], 2u);
+    check_equal("boundary faces with id 13", counts[13], 2u);
+    check_equal("boundary faces with id 0 (top, in no group)", counts[0], 2u);
+    check_equal("distinct boundary ids", counts.size(), std::size_t(4));
+    check(boundary_faces_on(triangulation, 11, 0, 0.0), "faces with id 11 lie on x = 0");
+    check(boundary_faces_on(triangulation, 12, 1, 0.0), "faces with id 12 lie on y = 0");
+    check(boundary_faces_on(triangulation, 0, 1, 1.0), "faces with id 0 lie on y = 1");
+    check_near("length of 'left'", boundary_length(triangulation, 11), 1.0, 1e-14);
+
+    check_equal("point groups", groups.point_groups.size(), std::size_t(1));
+    check(groups.point_groups.count("corner") == 1 &&
+            groups.point_groups.at("corner").size() == 1 &&
+            groups.point_groups.at("corner")[0] == Point<3>(1, 1, 0),
+          "point group 'corner' = {(1, 1, 0)}");
+
+    triangulation.refine_global(1);
+    counts = count_boundary_faces(triangulation);
+    std::cout << "after refine_global(1):" << std::endl;
+    check_equal("cells", triangulation.n_active_cells(), 32u);
+    check_near("total area", total_area(triangulation), 1.0, 1e-12);
+    check_equal("boundary faces with id 11 (left)", counts[11], 4u);
+    check_equal("boundary faces with id 12 (bottom)", counts[12], 4u);
+    check_equal("boundary faces with id 0", counts[0], 4u);
+    check(boundary_faces_on(triangulation, 11, 0, 0.0), "faces with id 11 lie on x = 0");
+    check_near("length of 'left'", boundary_length(triangulation, 11), 1.0, 1e-14);
+  }
+
+
+  void
+    test_bad_meshes(const std::string &data)
+  {
+    std::cout << "bad meshes:" << std::endl;
+    check_rejected(data + "/quad.msh", {"Quadrilateral", "element 7"});
+    check_rejected(data + "/degenerate.msh", {"degenerate", "triangle 5"});
+    check_rejected(data + "/flipped.msh",
+                   {"not consistently oriented", "triangles 1 and 2"});
+    check_rejected(data + "/interior_line.msh", {"seam", "interior", "boundary"});
+    check_rejected(data + "/nonmanifold.msh", {"non-manifold", "1, 2, 3"});
+    check_rejected(data + "/no_such_mesh.msh", {"not found"});
+  }
+
+
+  void
+    test_generation_from_geo()
+  {
+    namespace fs = std::filesystem;
+    std::cout << "generation from a .geo:" << std::endl;
+    const fs::path directory =
+      fs::temp_directory_path() / ("clothsim_mesh_reader_" + std::to_string(::getpid()));
+    fs::remove_all(directory);
+    fs::create_directories(directory);
+    {
+      std::ofstream geo(directory / "square.geo");
+      geo << "lc = 0.25;\n"
+             "Point(1) = {0, 0, 0, lc};\n"
+             "Point(2) = {1, 0, 0, lc};\n"
+             "Point(3) = {1, 1, 0, lc};\n"
+             "Point(4) = {0, 1, 0, lc};\n"
+             "Line(1) = {1, 2};\n"
+             "Line(2) = {2, 3};\n"
+             "Line(3) = {3, 4};\n"
+             "Line(4) = {4, 1};\n"
+             "Curve Loop(1) = {1, 2, 3, 4};\n"
+             "Plane Surface(1) = {1};\n"
+             "Physical Curve(\"left\", 7) = {4};\n"
+             "Physical Point(\"origin\", 8) = {1};\n";
+    }
+    // A .geo with a syntax error first: rejected, and gmsh must parse the next .geo fine.
+    {
+      std::ofstream geo(directory / "broken.geo");
+      geo << "Point(1) = {0, 0, 0, 0.25}\nLine(1) = {1, 2};\n";
+    }
+    check_rejected((directory / "broken.msh").string(), {"broken.geo", "syntax error"});
+
+    const std::string msh_file = (directory / "square.msh").string();
+    check(!fs::exists(msh_file), "square.msh does not exist before");
+
+    try
+      {
+        Triangulation<2, 3>    triangulation;
+        const mesh::MeshGroups groups = mesh::read_gmsh(msh_file, triangulation);
+        check(fs::exists(msh_file), "square.msh exists after");
+        const auto written = fs::last_write_time(msh_file);
+        std::cout << "  (" << triangulation.n_active_cells() << " cells, "
+                  << triangulation.n_vertices() << " vertices)" << std::endl;
+        check(triangulation.n_active_cells() > 8, "more than 8 cells");
+        check_near("total area", total_area(triangulation), 1.0, 1e-12);
+        check(groups.line_groups.count("left") == 1 && groups.line_groups.at("left") == 7,
+              "line group 'left' has boundary id 7");
+        check_near("length of 'left'", boundary_length(triangulation, 7), 1.0, 1e-12);
+        check(boundary_faces_on(triangulation, 7, 0, 0.0),
+              "faces with id 7 lie on x = 0");
+        check(groups.point_groups.count("origin") == 1 &&
+                groups.point_groups.at("origin").size() == 1 &&
+                groups.point_groups.at("origin")[0] == Point<3>(0, 0, 0),
+              "point group 'origin' = {(0, 0, 0)}");
+
+        // A second read takes the existing .msh as it is.
+        Triangulation<2, 3> again;
+        mesh::read_gmsh(msh_file, again);
+        check_equal("cells when read again",
+                    again.n_active_cells(),
+                    triangulation.n_active_cells());
+        check(fs::last_write_time(msh_file) == written, "square.msh not rewritten");
+      }
+    catch (const std::exception &error)
+      {
+        check(false, std::string("generation threw: ") + error.what());
+      }
+    fs::remove_all(directory);
+  }
+} // namespace
+
+
+int
+  main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  if (argc != 2)
+    {
+      std::cerr << "usage: " << argv[0] << " <directory with the test meshes>"
+                << std::endl;
+      return 2;
+    }
+  const std::string data = argv[1];
+
+  try
+    {
+      test_square(data);
+      test_bad_meshes(data);
+      test_generation_from_geo();
+    }
+  catch (const std::exception &error)
+    {
+      check(false, std::string("unexpected exception: ") + error.what());
+    }
+
+  std::cout << n_checks - n_failures << " of " << n_checks << " checks passed"
+            << std::endl;
+  return n_failures == 0 ? 0 : 1;
+}
