@@ -111,6 +111,7 @@ namespace clothsim
     DataOutBase::VtkFlags flags;
     flags.time  = time;
     flags.cycle = frame;
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out.set_flags(flags);
 
     const std::string stem = "solution-" + Utilities::int_to_string(frame, 5);

@@ -277,13 +277,22 @@ namespace clothsim
                       "NOX line search on the incremental potential: 'polynomial' (Armijo "
                       "sufficient decrease, quadratic/cubic interpolation), 'backtrack' "
                       "(halving until the potential decreases), 'full step' (none).");
+    prm.declare_entry("Displacement tolerance",
+                      "1e-6",
+                      Patterns::Double(0., 1e3),
+                      "... or when a full Newton step (not cut by the line search) moves no "
+                      "vertex coordinate by more than this (m). 0 disables this criterion.");
     prm.declare_entry("Tangent",
-                      "projected",
-                      Patterns::Selection("projected|exact"),
-                      "'projected': the membrane's geometric stiffness uses the positive part "
-                      "of the stress, so the tangent is positive definite and CG is valid "
-                      "(Newton converges linearly in compressed elements). 'exact': the true "
-                      "Hessian, indefinite under compression; use with 'gmres' or 'direct'.");
+                      "adaptive",
+                      Patterns::Selection("adaptive|projected|exact"),
+                      "Compression makes the membrane Hessian indefinite. 'projected': the "
+                      "geometric stiffness keeps only as much compressive stress as the step's "
+                      "mass term pays for, so the tangent is positive definite and CG is valid "
+                      "(Newton converges linearly where the sheet is strongly compressed). "
+                      "'exact': the true Hessian (quadratic convergence; CG may break down, "
+                      "use 'gmres' or 'direct'). 'adaptive': the exact Hessian, replaced by the "
+                      "projected one for a Newton iteration whose linear solve fails or does "
+                      "not give a descent direction.");
     prm.leave_subsection();
   }
 
@@ -295,7 +304,8 @@ namespace clothsim
     absolute_tolerance = prm.get_double("Absolute tolerance");
     relative_tolerance = prm.get_double("Relative tolerance");
     line_search        = prm.get("Line search");
-    projected_tangent  = prm.get("Tangent") == "projected";
+    displacement_tolerance = prm.get_double("Displacement tolerance");
+    tangent                = prm.get("Tangent");
     prm.leave_subsection();
   }
 

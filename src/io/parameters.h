@@ -84,7 +84,8 @@ namespace clothsim
     double       absolute_tolerance; // N
     double       relative_tolerance;
     std::string  line_search; // "polynomial", "backtrack", "full step"
-    bool         projected_tangent;
+    std::string  tangent; // "adaptive", "projected", "exact"
+    double       displacement_tolerance; // m
 
     static void declare_parameters(ParameterHandler &prm);
     void        parse_parameters(ParameterHandler &prm);

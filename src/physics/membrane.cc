@@ -67,24 +67,27 @@ namespace clothsim::physics
       return s;
     }
 
-    // Positive part of a symmetric 2x2 tensor (eigenvalues clamped at zero).
+    // A symmetric 2x2 tensor with its eigenvalues clamped below at `floor` (<= 0).
     Tensor<2, 2>
-    positive_part(const Tensor<2, 2> &S)
+    clamp_below(const Tensor<2, 2> &S, const double floor)
     {
       const double mean = 0.5 * (S[0][0] + S[1][1]);
       const double half_diff = 0.5 * (S[0][0] - S[1][1]);
       const double radius    = std::sqrt(half_diff * half_diff + S[0][1] * S[0][1]);
       const double l1 = mean + radius, l2 = mean - radius;
-      if (l2 >= 0.)
+      if (l2 >= floor)
         return S;
-      if (l1 <= 0.)
-        return Tensor<2, 2>();
-      // Projector onto the eigenvector of l1: (S - l2 I) / (l1 - l2).
-      Tensor<2, 2> P = S;
-      P[0][0] -= l2;
-      P[1][1] -= l2;
-      P *= l1 / (l1 - l2);
-      return P;
+      Tensor<2, 2> result;
+      result[0][0] = result[1][1] = floor;
+      if (l1 <= floor)
+        return result;
+      // S' = l1 P1 + floor P2 with P1 = (S - l2 I)/(l1 - l2), P2 = I - P1.
+      Tensor<2, 2> P1 = S;
+      P1[0][0] -= l2;
+      P1[1][1] -= l2;
+      P1 /= (l1 - l2);
+      result += (l1 - floor) * P1;
+      return result;
     }
   } // namespace
 
@@ -119,7 +122,7 @@ namespace clothsim::physics
   membrane_energy_gradient_hessian(const MembraneMaterial &material,
                                    const MembraneRestData &rest,
                                    const TrianglePositions &current,
-                                   const MembraneTangent    tangent,
+                                   const double             stress_floor,
                                    ElementVector           &gradient,
                                    ElementMatrix           *hessian)
   {
@@ -142,8 +145,9 @@ namespace clothsim::physics
 
     if (hessian != nullptr)
       {
-        const Tensor<2, 2> S_geo =
-          (tangent == MembraneTangent::projected) ? positive_part(s.stress) : s.stress;
+        const Tensor<2, 2> S_geo = std::isinf(stress_floor) ?
+                                     s.stress :
+                                     clamp_below(s.stress, -stress_floor);
 
         // Blocks H_ac = d²W/da_a da_c (3x3) for a, c in {1, 2}.
         Tensor<2, 3> H[2][2];

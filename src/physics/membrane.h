@@ -18,9 +18,12 @@
 //   Hessian                d²W/da_a da_c = |T̄| [ S^ac I + C^abcd a_b ⊗ a_d ],
 //                          C^abcd = k [ λ' Q^ab Q^cd + μ' (Q^ac Q^bd + Q^ad Q^bc) ],  Q = Ā⁻¹.
 // The material part (C) is positive semi-definite for 0 <= ν < 1/2; the geometric part S^ac I is
-// indefinite under compression. MembraneTangent::projected replaces S by its positive part S⁺
-// (eigenvalues clamped at zero), which makes the element Hessian positive semi-definite at the
-// cost of Newton's quadratic convergence in compressed elements (a tension-field tangent).
+// indefinite under compression. The tangent can clamp the eigenvalues of the matrix S^ac from
+// below at -s_min (s_min >= 0, N/m): s_min = 0 gives a positive semi-definite element Hessian
+// (a tension-field tangent), s_min = ∞ the exact one. Since the geometric block is
+// |T̄| (B S Bᵀ) ⊗ I with B the 3x2 vertex weights (|B|² = 3), clamping at
+// -s_min = -m_min / (3 |T̄|) keeps geometric + m_min I positive semi-definite: a time step's mass
+// term pays for the compression, and Newton stays exact wherever it can (see ClothModel).
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -46,12 +49,6 @@ namespace clothsim::physics
     double       area;           // |T̄|, m²
   };
 
-  enum class MembraneTangent
-  {
-    exact,
-    projected
-  };
-
   using TrianglePositions = std::array<Point<3>, 3>;
   using ElementVector     = std::array<double, 9>;
   using ElementMatrix     = std::array<std::array<double, 9>, 9>;
@@ -67,12 +64,13 @@ namespace clothsim::physics
                   const TrianglePositions &current);
 
   // Energy, gradient dW/dx (N, ordered x0.x, x0.y, x0.z, x1.x, ...) and Hessian d²W/dx² (N/m).
-  // `hessian` may be null when only the gradient is needed.
+  // `hessian` may be null when only the gradient is needed. The Hessian's geometric part uses
+  // S with eigenvalues clamped below at -stress_floor (N/m; infinity: exact Hessian).
   double
   membrane_energy_gradient_hessian(const MembraneMaterial &material,
                                    const MembraneRestData &rest,
                                    const TrianglePositions &current,
-                                   const MembraneTangent    tangent,
+                                   const double             stress_floor,
                                    ElementVector           &gradient,
                                    ElementMatrix           *hessian);
 

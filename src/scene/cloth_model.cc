@@ -274,7 +274,7 @@ namespace clothsim
         physics::membrane_energy_gradient_hessian(material,
                                                   element.rest,
                                                   x,
-                                                  physics::MembraneTangent::projected,
+                                                  /*stress_floor=*/0.,
                                                   gradient,
                                                   &damping_tangents[e]);
       }
@@ -291,11 +291,15 @@ namespace clothsim
     const double rho     = parameters.material.areal_density;
     const double alpha   = parameters.damping.mass_proportional;
     const double beta    = parameters.damping.stiffness_proportional;
-    const auto   tangent = parameters.nonlinear_solver.projected_tangent ?
-                             physics::MembraneTangent::projected :
-                             physics::MembraneTangent::exact;
     // Mass-like coefficient of the quadratic terms: w_i M + w_d α M.
     const double mass_weight = terms.inertia_weight + terms.damping_weight * alpha;
+    // Projected tangent: compression in the geometric stiffness is kept down to what the
+    // element's smallest mass eigenvalue m_min (ρ|T̄|/3 lumped, ρ|T̄|/12 consistent) pays for,
+    // s_min = mass_weight m_min / (3|T̄|) (see membrane.h); the element Hessian stays PSD.
+    const double stress_floor =
+      terms.projected_tangent ?
+        mass_weight * rho / (lumped ? 9. : 36.) :
+        std::numeric_limits<double>::infinity();
     const bool   use_inertia  = terms.inertia_weight > 0.;
     const bool   use_damping  = terms.damping_weight > 0. && (alpha > 0. || beta > 0.);
     Assert(!use_inertia || terms.predictor != nullptr, ExcInternalError());
@@ -327,7 +331,7 @@ namespace clothsim
         // Membrane energy W_e.
         if (gradient != nullptr || hessian != nullptr)
           value += physics::membrane_energy_gradient_hessian(
-            material, element.rest, x, tangent, g_e, hessian != nullptr ? &H_e : nullptr);
+            material, element.rest, x, stress_floor, g_e, hessian != nullptr ? &H_e : nullptr);
         else
           value += physics::membrane_energy(material, element.rest, x);
 

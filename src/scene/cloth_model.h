@@ -46,6 +46,7 @@ namespace clothsim
     double            load_factor    = 1.; // λ
     const VectorType *predictor      = nullptr; // û (ghosted); needed if w_i > 0
     const VectorType *previous       = nullptr; // u_n (ghosted); needed if w_d > 0
+    bool              projected_tangent = true; // Hessian: projected (PSD) or exact
   };
 
   struct Energies

@@ -10,6 +10,7 @@
 #include <NOX_StatusTest_FiniteValue.H>
 #include <NOX_StatusTest_MaxIters.H>
 #include <NOX_StatusTest_NormF.H>
+#include <NOX_Solver_LineSearchBased.H>
 #include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
@@ -46,8 +47,11 @@ namespace clothsim
       TrilinosWrappers::SparseMatrix &matrix;
       LinearSolver                   &linear_solver;
       TrilinosVector                  u, rhs, solution;
+      const std::string               tangent_mode; // adaptive, projected, exact
       unsigned int                    linear_iterations = 0;
+      unsigned int                    projected_fallbacks = 0;
       bool                            preconditioner_current = false;
+      bool                            tangent_projected      = false;
       std::string                     failure;
     };
 
@@ -102,24 +106,41 @@ namespace clothsim
                            const NOX::Epetra::Vector &input,
                            NOX::Epetra::Vector       &result) override
       {
+        copy(input.getEpetraVector(), context.rhs);
+        bool ok = solve();
+        // Adaptive tangent: an exact Hessian that the solver cannot handle, or whose step is no
+        // descent direction of the objective (indefinite), is replaced by the projected one.
+        if (context.tangent_mode == "adaptive" && !context.tangent_projected &&
+            (!ok || context.solution * context.rhs <= 0.))
+          {
+            context.problem.tangent(last_x, context.matrix, true);
+            context.tangent_projected      = true;
+            context.preconditioner_current = false;
+            ++context.projected_fallbacks;
+            ok = solve();
+          }
+        if (!ok)
+          return false;
+        copy(context.solution, result.getEpetraVector());
+        return true;
+      }
+
+      bool
+      solve()
+      {
         if (!context.preconditioner_current)
           {
             context.linear_solver.update_preconditioner(context.matrix);
             context.preconditioner_current = true;
           }
-        copy(input.getEpetraVector(), context.rhs);
         unsigned int iterations = 0;
         const bool   ok =
           context.linear_solver.solve(context.matrix, context.solution, context.rhs, iterations);
         context.linear_iterations += iterations;
         if (!ok)
-          {
-            context.failure = "linear solver did not converge in " +
-                              std::to_string(iterations) + " iterations";
-            return false;
-          }
-        copy(context.solution, result.getEpetraVector());
-        return true;
+          context.failure =
+            "linear solver did not converge in " + std::to_string(iterations) + " iterations";
+        return ok;
       }
 
       bool
@@ -145,8 +166,9 @@ namespace clothsim
       bool
       computeJacobian(const NOX::Epetra::Vector &x) override
       {
-        copy(x.getEpetraVector(), context.u);
-        context.problem.tangent(context.u, context.matrix);
+        copy(x.getEpetraVector(), last_x);
+        context.tangent_projected = context.tangent_mode == "projected";
+        context.problem.tangent(last_x, context.matrix, context.tangent_projected);
         context.preconditioner_current = false;
         return true;
       }
@@ -224,7 +246,53 @@ namespace clothsim
       {}
 
     private:
-      Context &context;
+      Context       &context;
+      TrilinosVector last_x{context.u}; // where the tangent was last computed
+    };
+
+    // Converged when a full Newton step (no line-search cut) moved no dof by more than the
+    // tolerance (m): the next correction is then far smaller (quadratic convergence) or at
+    // least smaller (linear). A cut step proves nothing, so it never counts.
+    class SmallFullStep : public NOX::StatusTest::Generic
+    {
+    public:
+      explicit SmallFullStep(const double tolerance)
+        : tolerance(tolerance)
+      {}
+
+      NOX::StatusTest::StatusType
+      checkStatus(const NOX::Solver::Generic &solver, NOX::StatusTest::CheckType) override
+      {
+        status = NOX::StatusTest::Unconverged;
+        if (solver.getNumIterations() == 0)
+          return status;
+        const auto *line_search = dynamic_cast<const NOX::Solver::LineSearchBased *>(&solver);
+        if (line_search == nullptr || line_search->getStepSize() != 1.)
+          return status;
+        auto update = solver.getSolutionGroup().getX().clone(NOX::DeepCopy);
+        update->update(-1., solver.getPreviousSolutionGroup().getX(), 1.);
+        if (update->norm(NOX::Abstract::Vector::MaxNorm) < tolerance)
+          status = NOX::StatusTest::Converged;
+        return status;
+      }
+
+      NOX::StatusTest::StatusType
+      getStatus() const override
+      {
+        return status;
+      }
+
+      std::ostream &
+      print(std::ostream &stream, int indent = 0) const override
+      {
+        for (int i = 0; i < indent; ++i)
+          stream << ' ';
+        return stream << status << "full Newton step below " << tolerance << " m\n";
+      }
+
+    private:
+      const double                tolerance;
+      NOX::StatusTest::StatusType status = NOX::StatusTest::Unevaluated;
     };
 
     // The line search's merit function: the problem's objective. Its gradient is F, so the
@@ -242,6 +310,7 @@ namespace clothsim
         TrilinosVector &u = context.u;
         copy(epetra(group.getX()), u);
         const double value = context.problem.objective(u);
+        if (getenv("CLOTHSIM_NOX_DEBUG")) std::cout << "merit " << value << std::endl;
         return std::isfinite(value) ? value : std::numeric_limits<double>::max();
       }
 
@@ -304,7 +373,8 @@ namespace clothsim
   NewtonResult
   NewtonSolver::solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u)
   {
-    Context context{problem, tangent_matrix, linear_solver, u, u, u, 0, false, ""};
+    Context context{
+      problem, tangent_matrix, linear_solver, u, u, u, parameters.tangent, 0, 0, false, false, ""};
 
     auto interface     = Teuchos::rcp(new Interface(context));
     auto linear_system = Teuchos::rcp(new LinearSystem(context));
@@ -312,7 +382,7 @@ namespace clothsim
 
     auto nox_parameters = Teuchos::rcp(new Teuchos::ParameterList);
     nox_parameters->set("Nonlinear Solver", "Line Search Based");
-    nox_parameters->sublist("Printing").set("Output Information", NOX::Utils::Error);
+    nox_parameters->sublist("Printing").set("Output Information", getenv("CLOTHSIM_NOX_DEBUG") ? NOX::Utils::Error + NOX::Utils::OuterIteration + NOX::Utils::InnerIteration: NOX::Utils::Error);
     nox_parameters->sublist("Direction").set("Method", "Newton");
     nox_parameters->sublist("Direction").sublist("Newton").set("Rescue Bad Newton Solve", false);
     Teuchos::ParameterList &line_search = nox_parameters->sublist("Line Search");
@@ -349,7 +419,12 @@ namespace clothsim
     const double initial_norm = group->getNormF();
     const double tolerance =
       std::max(parameters.absolute_tolerance, parameters.relative_tolerance * initial_norm);
-    auto converged = Teuchos::rcp(new NOX::StatusTest::NormF(tolerance));
+    auto residual_small = Teuchos::rcp(new NOX::StatusTest::NormF(tolerance));
+    auto converged = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
+    converged->addStatusTest(residual_small);
+    if (parameters.displacement_tolerance > 0.)
+      converged->addStatusTest(
+        Teuchos::rcp(new SmallFullStep(parameters.displacement_tolerance)));
     auto max_iterations =
       Teuchos::rcp(new NOX::StatusTest::MaxIters(parameters.max_iterations));
     auto finite = Teuchos::rcp(new NOX::StatusTest::FiniteValue);
@@ -376,12 +451,20 @@ namespace clothsim
         context.failure = e.what();
         outcome         = NOX::StatusTest::Failed;
       }
+    catch (const char *message)
+      {
+        // NOX throws C strings, e.g. when the Newton system cannot be solved.
+        if (context.failure.empty())
+          context.failure = message;
+        outcome = NOX::StatusTest::Failed;
+      }
 
     const auto &final_group =
       dynamic_cast<const NOX::Epetra::Group &>(solver->getSolutionGroup());
     copy(epetra(final_group.getX()), u);
     result.iterations        = solver->getNumIterations();
     result.linear_iterations = context.linear_iterations;
+    result.projected_fallbacks = context.projected_fallbacks;
     result.residual_norm     = final_group.isF() ? final_group.getNormF() : -1.;
     result.converged         = outcome == NOX::StatusTest::Converged &&
                        std::isfinite(result.residual_norm);

@@ -30,9 +30,11 @@ namespace clothsim
     virtual void residual(const TrilinosWrappers::MPI::Vector &u,
                           TrilinosWrappers::MPI::Vector       &F) = 0;
 
-    // J(u) = ∇F, with constrained rows and columns eliminated.
+    // J(u) = ∇F, with constrained rows and columns eliminated; `projected`: a positive definite
+    // modification instead of the exact Hessian.
     virtual void tangent(const TrilinosWrappers::MPI::Vector &u,
-                         TrilinosWrappers::SparseMatrix      &J) = 0;
+                         TrilinosWrappers::SparseMatrix      &J,
+                         const bool                           projected) = 0;
   };
 
   struct NewtonResult
@@ -41,6 +43,7 @@ namespace clothsim
     unsigned int iterations        = 0;
     unsigned int linear_iterations = 0; // summed over the Newton iterations
     double       residual_norm     = 0.; // ||F|| at the returned iterate, N
+    unsigned int projected_fallbacks = 0; // iterations that fell back to the projected tangent
     std::string  failure;                // why it failed, if it did
   };
 

@@ -39,16 +39,17 @@ namespace clothsim
       }
 
       void
-      tangent(const VectorType &u, MatrixType &J) override
+      tangent(const VectorType &u, MatrixType &J, const bool projected) override
       {
         TimerOutput::Scope scope(timer, "assemble tangent");
-        ghosted = u;
+        ghosted                 = u;
+        terms.projected_tangent = projected;
         model.assemble(ghosted, terms, nullptr, &J);
       }
 
     private:
       const ClothModel &model;
-      const StepTerms  &terms;
+      StepTerms         terms;
       TimerOutput      &timer;
       VectorType        ghosted;
     };
