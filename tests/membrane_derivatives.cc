@@ -1,6 +1,6 @@
-// Membrane element: gradient and exact Hessian against central finite differences on random
-// triangles and random deformations (stretched, compressed, sheared, rotated), and the
-// projected tangent's positive semi-definiteness. Asserts relative errors < 1e-6.
+// Membrane element: gradient and exact Hessian against central finite differences on
+// random triangles and random deformations (stretched, compressed, sheared, rotated), and
+// the projected tangent's positive semi-definiteness. Asserts relative errors < 1e-6.
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
@@ -17,7 +17,7 @@ using namespace clothsim::physics;
 namespace
 {
   double
-  norm(const ElementVector &v)
+    norm(const ElementVector &v)
   {
     double sum = 0.;
     for (const double x : v)
@@ -27,19 +27,19 @@ namespace
 } // namespace
 
 int
-main()
+  main()
 {
   std::mt19937                           generator(42);
   std::uniform_real_distribution<double> uniform(-1., 1.);
-  const double                           infinity = std::numeric_limits<double>::infinity();
-  unsigned int                           n_failures = 0;
-  double worst_gradient = 0., worst_hessian = 0., most_negative = 0.;
+  const double infinity       = std::numeric_limits<double>::infinity();
+  unsigned int n_failures     = 0;
+  double       worst_gradient = 0., worst_hessian = 0., most_negative = 0.;
 
   for (unsigned int trial = 0; trial < 200; ++trial)
     {
       const MembraneMaterial material{50. + 100. * std::abs(uniform(generator)),
                                       0.45 * std::abs(uniform(generator))};
-      TrianglePositions reference;
+      TrianglePositions      reference;
       for (auto &p : reference)
         for (unsigned int d = 0; d < 3; ++d)
           p[d] = 0.1 * uniform(generator);
@@ -57,7 +57,8 @@ main()
 
       ElementVector gradient;
       ElementMatrix hessian;
-      membrane_energy_gradient_hessian(material, rest, current, infinity, gradient, &hessian);
+      membrane_energy_gradient_hessian(
+        material, rest, current, infinity, gradient, &hessian);
 
       // Central differences, step h relative to the element size.
       const double  h = 1e-6 * std::sqrt(rest.area);
@@ -72,8 +73,10 @@ main()
                             membrane_energy(material, rest, minus)) /
                            (2. * h);
           ElementVector g_plus, g_minus;
-          membrane_energy_gradient_hessian(material, rest, plus, infinity, g_plus, nullptr);
-          membrane_energy_gradient_hessian(material, rest, minus, infinity, g_minus, nullptr);
+          membrane_energy_gradient_hessian(
+            material, rest, plus, infinity, g_plus, nullptr);
+          membrane_energy_gradient_hessian(
+            material, rest, minus, infinity, g_minus, nullptr);
           for (unsigned int j = 0; j < 9; ++j)
             fd_hessian[j][i] = (g_plus[j] - g_minus[j]) / (2. * h);
         }
@@ -117,8 +120,8 @@ main()
       if (smallest < -1e-10 * largest)
         {
           ++n_failures;
-          std::cout << "trial " << trial << ": projected tangent has eigenvalue " << smallest
-                    << " (largest " << largest << ")\n";
+          std::cout << "trial " << trial << ": projected tangent has eigenvalue "
+                    << smallest << " (largest " << largest << ")\n";
         }
     }
 

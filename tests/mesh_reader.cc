@@ -1,7 +1,7 @@
 // Unit test of clothsim::mesh::read_gmsh: reads the meshes in the directory given as
-// argv[1] (tests/data), checks cell and vertex counts, areas, boundary ids and point
-// groups, that bad meshes are rejected with a telling InputError, and that a .msh is
-// generated from a .geo.
+// argv[1] (tests/data), checks cell and vertex counts, areas, boundary ids, material ids
+// (surface groups) and point groups, that bad meshes are rejected with a telling
+// InputError, and that a .msh is generated from a .geo.
 
 #include "io/input_error.h"
 #include "mesh/gmsh_reader.h"
@@ -86,6 +86,39 @@ namespace
   }
 
 
+  // Number of active cells per material id.
+  std::map<types::material_id, unsigned int>
+    count_material_ids(const Triangulation<2, 3> &triangulation)
+  {
+    std::map<types::material_id, unsigned int> counts;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      ++counts[cell->material_id()];
+    return counts;
+  }
+
+
+  // True if the center of every active cell with material id `id` lies in the box
+  // [x_min, x_max] x [y_min, y_max].
+  bool
+    cells_in_box(const Triangulation<2, 3> &triangulation,
+                 const types::material_id   id,
+                 const double               x_min,
+                 const double               x_max,
+                 const double               y_min,
+                 const double               y_max)
+  {
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->material_id() == id)
+        {
+          const Point<3> center = cell->center();
+          if (center[0] < x_min || center[0] > x_max || center[1] < y_min ||
+              center[1] > y_max)
+            return false;
+        }
+    return true;
+  }
+
+
   // Total length of the active boundary faces with boundary id `id`.
   double
     boundary_length(const Triangulation<2, 3> &triangulation, const types::boundary_id id)
@@ -151,6 +184,8 @@ namespace
   {
     std::cout << "square.msh (gmsh 2.2, 3x3 nodes + 1 unused node, 8 triangles):"
               << std::endl;
+    // Surface groups: "half" (tag 32) = the 4 triangles of the bottom half, "cloth" (tag
+    // 31) = the 2 of the top-left quarter; the 2 of the top-right quarter are in none.
     Triangulation<2, 3>    triangulation;
     const mesh::MeshGroups groups = mesh::read_gmsh(data + "/square.msh", triangulation);
 
@@ -171,9 +206,29 @@ namespace
           "line group 'bottom' has boundary id 12");
     check(groups.line_groups.count("13") == 1 && groups.line_groups.at("13") == 13,
           "unnamed line group 13 is called '13' with boundary id 13");
-    const std::vector<std::string> expected_names = {"13", "bottom", "corner", "left"};
+    const std::vector<std::string> expected_names = {
+      "13", "bottom", "cloth", "corner", "half", "left"};
     check(groups.all_names() == expected_names,
-          "all_names() = {13, bottom, corner, left}");
+          "all_names() = {13, bottom, cloth, corner, half, left}");
+
+    check_equal("surface groups", groups.surface_groups.size(), std::size_t(2));
+    check(groups.surface_groups.count("cloth") == 1 &&
+            groups.surface_groups.at("cloth") == 31,
+          "surface group 'cloth' has material id 31 (its physical tag)");
+    check(groups.surface_groups.count("half") == 1 &&
+            groups.surface_groups.at("half") == 32,
+          "surface group 'half' has material id 32");
+    auto materials = count_material_ids(triangulation);
+    check_equal("cells with material id 31 (cloth)", materials[31], 2u);
+    check_equal("cells with material id 32 (half)", materials[32], 4u);
+    check_equal("cells with material id 0 (in no group)", materials[0], 2u);
+    check_equal("distinct material ids", materials.size(), std::size_t(3));
+    check(cells_in_box(triangulation, 32, 0, 1, 0, 0.5),
+          "cells with material id 32 lie in the bottom half");
+    check(cells_in_box(triangulation, 31, 0, 0.5, 0.5, 1),
+          "cells with material id 31 lie in the top-left quarter");
+    check(cells_in_box(triangulation, 0, 0.5, 1, 0.5, 1),
+          "cells with material id 0 lie in the top-right quarter");
 
     auto counts = count_boundary_faces(triangulation);
     check_equal("boundary faces with id 11 (left)", counts[11], 2u);
@@ -202,6 +257,15 @@ namespace
     check_equal("boundary faces with id 0", counts[0], 4u);
     check(boundary_faces_on(triangulation, 11, 0, 0.0), "faces with id 11 lie on x = 0");
     check_near("length of 'left'", boundary_length(triangulation, 11), 1.0, 1e-14);
+    materials = count_material_ids(triangulation);
+    check_equal("cells with material id 31 (cloth)", materials[31], 8u);
+    check_equal("cells with material id 32 (half)", materials[32], 16u);
+    check_equal("cells with material id 0 (in no group)", materials[0], 8u);
+    check_equal("distinct material ids", materials.size(), std::size_t(3));
+    check(cells_in_box(triangulation, 32, 0, 1, 0, 0.5),
+          "cells with material id 32 lie in the bottom half");
+    check(cells_in_box(triangulation, 31, 0, 0.5, 0.5, 1),
+          "cells with material id 31 lie in the top-left quarter");
   }
 
 
@@ -215,6 +279,8 @@ namespace
                    {"not consistently oriented", "triangles 1 and 2"});
     check_rejected(data + "/interior_line.msh", {"seam", "interior", "boundary"});
     check_rejected(data + "/nonmanifold.msh", {"non-manifold", "1, 2, 3"});
+    check_rejected(data + "/overlapping_surfaces.msh",
+                   {"back", "triangle 1", "also in surface group 'front'"});
     check_rejected(data + "/no_such_mesh.msh", {"not found"});
   }
 
@@ -242,7 +308,8 @@ namespace
              "Curve Loop(1) = {1, 2, 3, 4};\n"
              "Plane Surface(1) = {1};\n"
              "Physical Curve(\"left\", 7) = {4};\n"
-             "Physical Point(\"origin\", 8) = {1};\n";
+             "Physical Point(\"origin\", 8) = {1};\n"
+             "Physical Surface(\"cloth\", 9) = {1};\n";
     }
     // A .geo with a syntax error first: rejected, and gmsh must parse the next .geo fine.
     {
@@ -273,6 +340,12 @@ namespace
                 groups.point_groups.at("origin").size() == 1 &&
                 groups.point_groups.at("origin")[0] == Point<3>(0, 0, 0),
               "point group 'origin' = {(0, 0, 0)}");
+        check(groups.surface_groups.count("cloth") == 1 &&
+                groups.surface_groups.at("cloth") == 9,
+              "surface group 'cloth' has material id 9");
+        const auto materials = count_material_ids(triangulation);
+        check(materials.size() == 1 && materials.begin()->first == 9,
+              "all cells have material id 9");
 
         // A second read takes the existing .msh as it is.
         Triangulation<2, 3> again;

@@ -8,8 +8,7 @@
 #include "io/input_error.h"
 #include "io/output_writer.h"
 #include "io/parameters.h"
-#include "mesh/gmsh_reader.h"
-#include "scene/cloth_model.h"
+#include "scene/scene.h"
 #include "time/time_stepper.h"
 
 #include <filesystem>
@@ -23,7 +22,7 @@ namespace clothsim
     namespace fs = std::filesystem;
 
     std::string
-    default_parameter_file()
+      default_parameter_file()
     {
       // Next to the executable's source tree first, then the working directory.
       const fs::path in_source = fs::path(CLOTHSIM_SOURCE_DIR) / "params" / "default.prm";
@@ -32,30 +31,20 @@ namespace clothsim
       return "params/default.prm";
     }
 
-    // Mesh path as written in the parameter file, relative to that file's directory.
     std::string
-    resolve_mesh_file(const ParameterInput &input)
-    {
-      const fs::path mesh = input.parameters.scene.mesh_file;
-      if (mesh.is_absolute() || input.directory.empty())
-        return mesh.lexically_normal().string();
-      return (fs::path(input.directory) / mesh).lexically_normal().string();
-    }
-
-    std::string
-    output_directory(const CommandLine &command_line, const ParameterInput &input)
+      output_directory(const CommandLine &command_line, const ParameterInput &input)
     {
       if (!command_line.output_directory.empty())
         return command_line.output_directory;
-      const std::string name = input.parameters.scene.name.empty() ?
-                                 fs::path(input.file).stem().string() :
-                                 input.parameters.scene.name;
+      const std::string name = input.parameters.scene.name.empty()
+                                 ? fs::path(input.file).stem().string()
+                                 : input.parameters.scene.name;
       return (fs::path("output") / name).string();
     }
 
     // Creates the directory and removes frames of an earlier run in it.
     void
-    prepare_output_directory(const std::string &directory)
+      prepare_output_directory(const std::string &directory)
     {
       fs::create_directories(directory);
       for (const auto &entry : fs::directory_iterator(directory))
@@ -67,11 +56,13 @@ namespace clothsim
     }
 
     void
-    write_input_copies(const std::string      &directory,
-                       const ParameterInput   &input,
-                       const ParameterHandler &prm)
+      write_input_copies(const std::string      &directory,
+                         const ParameterInput   &input,
+                         const ParameterHandler &prm)
     {
-      fs::copy_file(input.file, directory + "/original.prm", fs::copy_options::overwrite_existing);
+      fs::copy_file(input.file,
+                    directory + "/original.prm",
+                    fs::copy_options::overwrite_existing);
       if (!input.overrides.empty() && fs::path(input.file).extension() != ".json")
         {
           std::ofstream out(directory + "/original.prm", std::ios::app);
@@ -86,7 +77,7 @@ namespace clothsim
 
 
   int
-  run_application(const int argc, const char *const *argv)
+    run_application(const int argc, const char *const *argv)
   {
     const MPI_Comm     communicator = MPI_COMM_WORLD;
     const bool         is_root      = Utilities::MPI::this_mpi_process(communicator) == 0;
@@ -110,31 +101,22 @@ namespace clothsim
           }
 
         // All input is read and checked before anything is written.
-        ParameterHandler     prm;
-        const std::string    file = command_line.parameter_file.empty() ?
-                                      default_parameter_file() :
-                                      command_line.parameter_file;
-        const ParameterInput input = read_parameters(prm, file, command_line.overrides);
-        const Parameters    &parameters = input.parameters;
-
-        const std::string   mesh_file = resolve_mesh_file(input);
-        Triangulation<2, 3> serial_mesh;
-        mesh::MeshGroups    groups;
-        // Rank 0 first: it may have to generate the .msh from its .geo.
-        if (is_root)
-          groups = mesh::read_gmsh(mesh_file, serial_mesh);
-        MPI_Barrier(communicator);
-        if (!is_root)
-          groups = mesh::read_gmsh(mesh_file, serial_mesh);
-
-        ClothModel  model(communicator, parameters, file, serial_mesh, groups);
-        const std::vector<ProbeLocation> probes = model.locate_probes(parameters.output.probes);
+        const std::string      file = command_line.parameter_file.empty()
+                                        ? default_parameter_file()
+                                        : command_line.parameter_file;
+        std::unique_ptr<Scene> scene =
+          load_scene(file, command_line.overrides, communicator);
+        const ParameterInput &input      = scene->input;
+        const Parameters     &parameters = scene->parameters();
+        const ClothModel     &model      = *scene->model;
+        const std::string    &mesh_file  = scene->mesh_file;
+        const auto           &probes     = scene->probes;
 
         const std::string directory = output_directory(command_line, input);
         if (is_root)
           {
             prepare_output_directory(directory);
-            write_input_copies(directory, input, prm);
+            write_input_copies(directory, input, scene->prm);
           }
         MPI_Barrier(communicator);
 
@@ -146,12 +128,16 @@ namespace clothsim
               << "  pinned dofs: " << model.n_pinned_dofs()
               << ", mass: " << model.total_mass() << " kg\n";
         for (const ProbeLocation &probe : probes)
-          pcout << "  probe " << probe.name << " at vertex " << probe.reference_point << "\n";
+          pcout << "  probe " << probe.name << " at vertex " << probe.reference_point
+                << "\n";
         pcout << "  output: " << directory << std::endl;
 
-        TimerOutput  timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
+        TimerOutput  timer(communicator,
+                          pcout,
+                          TimerOutput::never,
+                          TimerOutput::wall_times);
         OutputWriter output(directory, model, probes, parameters.output.write_vtk);
-        TimeStepper  stepper(parameters, model, output, pcout, timer);
+        TimeStepper  stepper(parameters, *scene->model, output, pcout, timer);
         Timer        wall_clock;
         RunSummary   summary;
         try
@@ -166,11 +152,12 @@ namespace clothsim
             return 2;
           }
         const double seconds = wall_clock.wall_time();
-        pcout << "done: " << summary.steps << " steps in " << seconds << " s; Newton iterations "
-              << summary.newton_iterations << " ("
+        pcout << "done: " << summary.steps << " steps in " << seconds
+              << " s; Newton iterations " << summary.newton_iterations << " ("
               << double(summary.newton_iterations) / std::max(1u, summary.steps)
               << " per step), linear iterations " << summary.linear_iterations << " ("
-              << double(summary.linear_iterations) / std::max(1u, summary.newton_iterations)
+              << double(summary.linear_iterations) /
+                   std::max(1u, summary.newton_iterations)
               << " per Newton step), step halvings " << summary.retries << std::endl;
         timer.print_summary();
         return 0;

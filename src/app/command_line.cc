@@ -5,7 +5,7 @@
 namespace clothsim
 {
   CommandLine
-  parse_command_line(const int argc, const char *const *argv)
+    parse_command_line(const int argc, const char *const *argv)
   {
     CommandLine command_line;
     for (int i = 1; i < argc; ++i)
@@ -36,14 +36,17 @@ namespace clothsim
 
 
   std::string
-  usage()
+    usage()
   {
     return "clothsim: finite-element cloth and thin-shell simulator\n"
            "\n"
            "usage:\n"
-           "  clothsim [PARAMS.prm] [--set \"Section/Name=value\"]... [--output-dir DIR]\n"
-           "      run the scene in PARAMS.prm (or .json); without one, params/default.prm.\n"
-           "      --set overrides one entry (repeatable), e.g. --set \"Time/End time=0.5\".\n"
+           "  clothsim [PARAMS.prm] [--set \"Section/Name=value\"]... [--output-dir "
+           "DIR]\n"
+           "      run the scene in PARAMS.prm (or .json); without one, "
+           "params/default.prm.\n"
+           "      --set overrides one entry (repeatable), e.g. --set \"Time/End "
+           "time=0.5\".\n"
            "      Output goes to DIR, default output/<Scene name or file stem>/.\n"
            "  clothsim --print-parameters\n"
            "      print every parameter with its default, allowed values and unit.\n"

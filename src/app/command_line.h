@@ -24,8 +24,11 @@ namespace clothsim
     std::string              output_directory; // empty: output/<scene name>
   };
 
-  // Throws InputError("<command line>", argument, message) on unknown or incomplete options.
-  CommandLine parse_command_line(const int argc, const char *const *argv);
+  // Throws InputError("<command line>", argument, message) on unknown or incomplete
+  // options.
+  CommandLine
+    parse_command_line(const int argc, const char *const *argv);
 
-  std::string usage();
+  std::string
+    usage();
 } // namespace clothsim

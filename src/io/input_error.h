@@ -1,7 +1,7 @@
 #pragma once
 
-// An error in what the user gave us (parameter file, mesh, command line). main() prints it
-// as one line, "clothsim: error: <file>: <entry>: <message>", and exits non-zero.
+// An error in what the user gave us (parameter file, mesh, command line). main() prints
+// it as one line, "clothsim: error: <file>: <entry>: <message>", and exits non-zero.
 
 #include <stdexcept>
 #include <string>
@@ -16,19 +16,21 @@ namespace clothsim
     InputError(const std::string &file,
                const std::string &entry,
                const std::string &message)
-      : std::runtime_error(compose(file, entry, message))
-      , file(file)
-      , entry(entry)
+        : std::runtime_error(compose(file, entry, message))
+        , file(file)
+        , entry(entry)
+        , message(message)
     {}
 
     const std::string file;
     const std::string entry;
+    const std::string message;
 
   private:
     static std::string
-    compose(const std::string &file,
-            const std::string &entry,
-            const std::string &message)
+      compose(const std::string &file,
+              const std::string &entry,
+              const std::string &message)
     {
       std::string text = file.empty() ? std::string("<command line>") : file;
       if (!entry.empty())

@@ -16,30 +16,31 @@ namespace clothsim
                              const ClothModel                 &model,
                              const std::vector<ProbeLocation> &probes,
                              const bool                        write_vtk)
-    : directory(directory)
-    , model(model)
-    , probes(probes)
-    , write_vtk(write_vtk)
-    , is_root(Utilities::MPI::this_mpi_process(model.get_communicator()) == 0)
+      : directory(directory)
+      , model(model)
+      , probes(probes)
+      , write_vtk(write_vtk)
+      , is_root(Utilities::MPI::this_mpi_process(model.get_communicator()) == 0)
   {
     if (is_root)
       {
         probes_csv.open(directory + "/probes.csv");
         probes_csv << "step,time,probe,X,Y,Z,ux,uy,uz\n" << std::flush;
         statistics_csv.open(directory + "/statistics.csv");
-        statistics_csv << "step,time,dt,newton_iterations,linear_iterations,residual,retries,"
-                          "kinetic_energy,elastic_energy,potential_energy,total_energy,"
-                          "wall_seconds\n"
-                       << std::flush;
+        statistics_csv
+          << "step,time,dt,newton_iterations,linear_iterations,residual,retries,"
+             "kinetic_energy,elastic_energy,potential_energy,total_energy,"
+             "wall_seconds\n"
+          << std::flush;
       }
   }
 
 
   void
-  OutputWriter::write_state(const unsigned int step,
-                            const double       time,
-                            const VectorType  &u,
-                            const VectorType  &v)
+    OutputWriter::write_state(const unsigned int step,
+                              const double       time,
+                              const VectorType  &u,
+                              const VectorType  &v)
   {
     if (write_vtk)
       write_vtk_frame(time, u, v);
@@ -54,8 +55,8 @@ namespace clothsim
         for (unsigned int p = 0; p < probes.size(); ++p)
           {
             const Point<3> &X = probes[p].reference_point;
-            probes_csv << step << ',' << time << ',' << probes[p].name << ',' << X[0] << ','
-                       << X[1] << ',' << X[2] << ',' << values[3 * p] << ','
+            probes_csv << step << ',' << time << ',' << probes[p].name << ',' << X[0]
+                       << ',' << X[1] << ',' << X[2] << ',' << values[3 * p] << ','
                        << values[3 * p + 1] << ',' << values[3 * p + 2] << '\n';
           }
         probes_csv << std::flush;
@@ -64,15 +65,15 @@ namespace clothsim
 
 
   void
-  OutputWriter::write_statistics(const StepStatistics &row)
+    OutputWriter::write_statistics(const StepStatistics &row)
   {
     if (!is_root)
       return;
     const Energies &e = row.energies;
-    statistics_csv << std::setprecision(12) << row.step << ',' << row.time << ',' << row.dt
-                   << ',' << row.newton_iterations << ',' << row.linear_iterations << ','
-                   << row.residual << ',' << row.retries << ',' << e.kinetic << ','
-                   << e.elastic << ',' << e.potential << ','
+    statistics_csv << std::setprecision(12) << row.step << ',' << row.time << ','
+                   << row.dt << ',' << row.newton_iterations << ','
+                   << row.linear_iterations << ',' << row.residual << ',' << row.retries
+                   << ',' << e.kinetic << ',' << e.elastic << ',' << e.potential << ','
                    << e.kinetic + e.elastic + e.potential << ',' << std::setprecision(4)
                    << row.wall_seconds << '\n'
                    << std::flush;
@@ -80,7 +81,9 @@ namespace clothsim
 
 
   void
-  OutputWriter::write_vtk_frame(const double time, const VectorType &u, const VectorType &v)
+    OutputWriter::write_vtk_frame(const double      time,
+                                  const VectorType &u,
+                                  const VectorType &v)
   {
     const MPI_Comm     communicator = model.get_communicator();
     const unsigned int n_ranks      = Utilities::MPI::n_mpi_processes(communicator);
@@ -89,8 +92,8 @@ namespace clothsim
 
     DataOut<2, 3> data_out;
     data_out.attach_dof_handler(model.get_dof_handler());
-    const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
-      3, DataComponentInterpretation::component_is_part_of_vector);
+    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
+      vector_field(3, DataComponentInterpretation::component_is_part_of_vector);
     data_out.add_data_vector(u,
                              std::vector<std::string>(3, "displacement"),
                              DataOut<2, 3>::type_dof_data,
@@ -99,7 +102,7 @@ namespace clothsim
                              std::vector<std::string>(3, "velocity"),
                              DataOut<2, 3>::type_dof_data,
                              vector_field);
-    Vector<float> strain, stress;
+    Vector<double> strain, stress;
     model.cell_strain_stress(u, strain, stress);
     data_out.add_data_vector(strain, "green_strain", DataOut<2, 3>::type_cell_data);
     data_out.add_data_vector(stress, "membrane_stress", DataOut<2, 3>::type_cell_data);
@@ -109,8 +112,8 @@ namespace clothsim
     data_out.build_patches(model.get_mapping(), 1);
 
     DataOutBase::VtkFlags flags;
-    flags.time  = time;
-    flags.cycle = frame;
+    flags.time              = time;
+    flags.cycle             = frame;
     flags.compression_level = DataOutBase::VtkFlags::best_speed;
     data_out.set_flags(flags);
 

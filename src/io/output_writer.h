@@ -1,9 +1,10 @@
 #pragma once
 
 // Everything a run writes into its output directory while it runs: solution.pvd with one
-// solution-NNNNN.vtu (.pvtu plus one piece per rank under MPI) per output time, probes.csv and
-// statistics.csv. Files are flushed as they are written, and solution.pvd is replaced atomically,
-// so a run that stops early leaves a consistent record of everything up to that point.
+// solution-NNNNN.vtu (.pvtu plus one piece per rank under MPI) per output time,
+// probes.csv and statistics.csv. Files are flushed as they are written, and solution.pvd
+// is replaced atomically, so a run that stops early leaves a consistent record of
+// everything up to that point.
 
 #include <deal.II/base/conditional_ostream.h>
 
@@ -20,14 +21,14 @@ namespace clothsim
   struct StepStatistics
   {
     unsigned int step;
-    double       time;              // s (load factor in static mode)
-    double       dt;                // s
+    double       time; // s (load factor in static mode)
+    double       dt;   // s
     unsigned int newton_iterations;
     unsigned int linear_iterations;
-    double       residual;          // final Newton residual 2-norm, N
-    unsigned int retries;           // step halvings before this step was accepted
-    Energies     energies;          // J
-    double       wall_seconds;      // since the run started
+    double       residual;     // final Newton residual 2-norm, N
+    unsigned int retries;      // step halvings before this step was accepted
+    Energies     energies;     // J
+    double       wall_seconds; // since the run started
   };
 
   class OutputWriter
@@ -39,23 +40,26 @@ namespace clothsim
                  const bool                        write_vtk);
 
     // VTK frame (if enabled) and probe rows for the state (u, v), both ghosted.
-    void write_state(const unsigned int step,
-                     const double       time,
-                     const VectorType  &u,
-                     const VectorType  &v);
+    void
+      write_state(const unsigned int step,
+                  const double       time,
+                  const VectorType  &u,
+                  const VectorType  &v);
 
-    void write_statistics(const StepStatistics &row);
+    void
+      write_statistics(const StepStatistics &row);
 
   private:
-    void write_vtk_frame(const double time, const VectorType &u, const VectorType &v);
+    void
+      write_vtk_frame(const double time, const VectorType &u, const VectorType &v);
 
-    const std::string                      directory;
-    const ClothModel                      &model;
-    const std::vector<ProbeLocation>       probes;
-    const bool                             write_vtk;
-    const bool                             is_root;
-    std::ofstream                          probes_csv;
-    std::ofstream                          statistics_csv;
+    const std::string                           directory;
+    const ClothModel                           &model;
+    const std::vector<ProbeLocation>            probes;
+    const bool                                  write_vtk;
+    const bool                                  is_root;
+    std::ofstream                               probes_csv;
+    std::ofstream                               statistics_csv;
     std::vector<std::pair<double, std::string>> frames;
   };
 } // namespace clothsim

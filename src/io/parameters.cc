@@ -16,9 +16,9 @@ namespace clothsim
   {
     // A deal.II exception's "Additional information" as one line.
     std::string
-    one_line(const std::exception &exception)
+      one_line(const std::exception &exception)
     {
-      std::string       text = exception.what();
+      std::string       text   = exception.what();
       const std::string marker = "Additional information:";
       const auto        pos    = text.find(marker);
       if (pos != std::string::npos)
@@ -34,7 +34,7 @@ namespace clothsim
 
     // The entry name in deal.II's message "... for the entry named <NAME> ...", if any.
     std::string
-    entry_in(const std::string &message)
+      entry_in(const std::string &message)
     {
       std::smatch match;
       if (std::regex_search(message, match, std::regex("entry named <([^>]*)>")))
@@ -49,20 +49,22 @@ namespace clothsim
 
 
   void
-  SceneParameters::declare_parameters(ParameterHandler &prm)
+    SceneParameters::declare_parameters(ParameterHandler &prm)
   {
-    prm.declare_entry("Scene name",
-                      "",
-                      Patterns::Anything(),
-                      "Name of the run; output goes to output/<Scene name>/ unless --output-dir "
-                      "is given. Empty: the parameter file's name without extension.");
+    prm.declare_entry(
+      "Scene name",
+      "",
+      Patterns::Anything(),
+      "Name of the run; output goes to output/<Scene name>/ unless --output-dir "
+      "is given. Empty: the parameter file's name without extension.");
     prm.enter_subsection("Mesh");
-    prm.declare_entry("Mesh file",
-                      "../meshes/sheet.msh",
-                      Patterns::FileName(),
-                      "gmsh triangle mesh (.msh), relative to this parameter file's directory. "
-                      "If it is missing but a .geo of the same name exists, gmsh generates it. "
-                      "Lengths in the mesh are in m.");
+    prm.declare_entry(
+      "Mesh file",
+      "../meshes/sheet.msh",
+      Patterns::FileName(),
+      "gmsh triangle mesh (.msh), relative to this parameter file's directory. "
+      "If it is missing but a .geo of the same name exists, gmsh generates it. "
+      "Lengths in the mesh are in m.");
     prm.declare_entry("Global refinements",
                       "0",
                       Patterns::Integer(0, 8),
@@ -72,7 +74,7 @@ namespace clothsim
   }
 
   void
-  SceneParameters::parse_parameters(ParameterHandler &prm)
+    SceneParameters::parse_parameters(ParameterHandler &prm)
   {
     name = prm.get("Scene name");
     prm.enter_subsection("Mesh");
@@ -83,19 +85,21 @@ namespace clothsim
 
 
   void
-  MaterialParameters::declare_parameters(ParameterHandler &prm)
+    MaterialParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Material");
-    prm.declare_entry("Stiffness given as",
-                      "E*h",
-                      Patterns::Selection("E*h|E and thickness"),
-                      "How the membrane (stretch) stiffness is given: 'E*h' uses 'Stretch "
-                      "stiffness' directly (fabrics); 'E and thickness' uses Young's modulus "
-                      "times thickness (engineering shells).");
-    prm.declare_entry("Stretch stiffness",
-                      "100",
-                      Patterns::Double(1e-12, 1e15),
-                      "Membrane stiffness E*h in N/m (used when 'Stiffness given as = E*h').");
+    prm.declare_entry(
+      "Stiffness given as",
+      "E*h",
+      Patterns::Selection("E*h|E and thickness"),
+      "How the membrane (stretch) stiffness is given: 'E*h' uses 'Stretch "
+      "stiffness' directly (fabrics); 'E and thickness' uses Young's modulus "
+      "times thickness (engineering shells).");
+    prm.declare_entry(
+      "Stretch stiffness",
+      "100",
+      Patterns::Double(1e-12, 1e15),
+      "Membrane stiffness E*h in N/m (used when 'Stiffness given as = E*h').");
     prm.declare_entry("Young's modulus",
                       "1e6",
                       Patterns::Double(1e-12, 1e15),
@@ -114,16 +118,17 @@ namespace clothsim
                       "0.1",
                       Patterns::Double(1e-12, 1e6),
                       "Mass per unit reference area ρ_A in kg/m².");
-    prm.declare_entry("Mass",
-                      "lumped",
-                      Patterns::Selection("lumped|consistent"),
-                      "Mass matrix: 'lumped' (a third of each triangle's mass on each vertex) "
-                      "or 'consistent' (the P1 Galerkin mass matrix).");
+    prm.declare_entry(
+      "Mass",
+      "lumped",
+      Patterns::Selection("lumped|consistent"),
+      "Mass matrix: 'lumped' (a third of each triangle's mass on each vertex) "
+      "or 'consistent' (the P1 Galerkin mass matrix).");
     prm.leave_subsection();
   }
 
   void
-  MaterialParameters::parse_parameters(ParameterHandler &prm)
+    MaterialParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Material");
     if (prm.get("Stiffness given as") == "E*h")
@@ -138,25 +143,27 @@ namespace clothsim
 
 
   void
-  DampingParameters::declare_parameters(ParameterHandler &prm)
+    DampingParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Damping");
-    prm.declare_entry("Mass proportional",
-                      "0",
-                      Patterns::Double(0., 1e6),
-                      "Rayleigh coefficient α in 1/s: damping force -α M v (air-like drag on "
-                      "every motion, rigid included).");
-    prm.declare_entry("Stiffness proportional",
-                      "0",
-                      Patterns::Double(0., 1e3),
-                      "Rayleigh coefficient β in s: damping force -β K v, K the (positive "
-                      "semi-definite) membrane tangent at the start of the step; damps "
-                      "straining only.");
+    prm.declare_entry(
+      "Mass proportional",
+      "0",
+      Patterns::Double(0., 1e6),
+      "Rayleigh coefficient α in 1/s: damping force -α M v (air-like drag on "
+      "every motion, rigid included).");
+    prm.declare_entry(
+      "Stiffness proportional",
+      "0",
+      Patterns::Double(0., 1e3),
+      "Rayleigh coefficient β in s: damping force -β K v, K the (positive "
+      "semi-definite) membrane tangent at the start of the step; damps "
+      "straining only.");
     prm.leave_subsection();
   }
 
   void
-  DampingParameters::parse_parameters(ParameterHandler &prm)
+    DampingParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Damping");
     mass_proportional      = prm.get_double("Mass proportional");
@@ -166,7 +173,7 @@ namespace clothsim
 
 
   void
-  LoadParameters::declare_parameters(ParameterHandler &prm)
+    LoadParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Loads");
     prm.declare_entry("Gravity",
@@ -177,7 +184,7 @@ namespace clothsim
   }
 
   void
-  LoadParameters::parse_parameters(ParameterHandler &prm)
+    LoadParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Loads");
     const auto values =
@@ -189,51 +196,78 @@ namespace clothsim
 
 
   void
-  ConstraintParameters::declare_parameters(ParameterHandler &prm)
+    ConstraintParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Constraints");
-    prm.declare_entry("Pinned groups",
-                      "",
-                      Patterns::List(Patterns::Anything(), 0, 100, ","),
-                      "Comma-separated names of gmsh physical groups (points or boundary "
-                      "lines) whose vertices follow 'Pinned displacement'.");
-    prm.declare_entry("Pinned displacement",
-                      "0; 0; 0",
-                      Patterns::List(Patterns::Anything(), 3, 3, ";"),
-                      "Displacement of pinned vertices in m: three expressions 'ux; uy; uz' in "
-                      "the reference coordinates x, y, z (m) and time t (s), e.g. "
-                      "'0; 0; 0.1*sin(2*pi*t)'. In static mode t is the load factor 0..1.");
+    prm.declare_entry(
+      "Pinned groups",
+      "",
+      Patterns::List(Patterns::Anything(), 0, 100, ";"),
+      "gmsh physical groups (points, boundary lines or surfaces) whose vertices "
+      "follow 'Pinned displacement', separated by ';'. Each is 'name' (all "
+      "components) or 'name: components' with components from x, y, z, e.g. "
+      "'pinned' or 'left: x; corner: xy; cloth: z'.");
+    prm.declare_entry(
+      "Pinned displacement",
+      "0; 0; 0",
+      Patterns::List(Patterns::Anything(), 3, 3, ";"),
+      "Displacement of pinned vertices in m: three expressions 'ux; uy; uz' in "
+      "the reference coordinates x, y, z (m) and time t (s), e.g. "
+      "'0; 0; 0.1*sin(2*pi*t)'. In static mode t is the load factor 0..1.");
     prm.leave_subsection();
   }
 
   void
-  ConstraintParameters::parse_parameters(ParameterHandler &prm)
+    ConstraintParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Constraints");
-    pinned_groups       = Utilities::split_string_list(prm.get("Pinned groups"), ',');
+    pinned_groups.clear();
+    for (const std::string &item :
+         Utilities::split_string_list(prm.get("Pinned groups"), ';'))
+      {
+        const auto  parts = Utilities::split_string_list(item, ':');
+        PinnedGroup group{parts[0], {{true, true, true}}};
+        if (parts.size() > 2 || parts[0].empty() ||
+            (parts.size() == 2 &&
+             parts[1].find_first_not_of("xyz") != std::string::npos) ||
+            (parts.size() == 2 && parts[1].empty()))
+          throw InputError("",
+                           "Constraints/Pinned groups",
+                           "'" + item +
+                             "' is not 'name' or 'name: components' (components "
+                             "from x, y, z)");
+        if (parts.size() == 2)
+          for (unsigned int d = 0; d < 3; ++d)
+            group.components[d] = parts[1].find("xyz"[d]) != std::string::npos;
+        pinned_groups.push_back(group);
+      }
     pinned_displacement = prm.get("Pinned displacement");
     prm.leave_subsection();
   }
 
 
   void
-  TimeParameters::declare_parameters(ParameterHandler &prm)
+    TimeParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time");
-    prm.declare_entry("Integrator",
-                      "backward euler",
-                      Patterns::Selection("backward euler|static"),
-                      "'backward euler': implicit dynamics, each step the minimiser of the "
-                      "incremental potential. 'static': equilibrium under loads ramped in "
-                      "'Load steps' equal increments (time = load factor 0..1).");
+    prm.declare_entry(
+      "Integrator",
+      "backward euler",
+      Patterns::Selection("backward euler|static"),
+      "'backward euler': implicit dynamics, each step the minimiser of the "
+      "incremental potential. 'static': equilibrium under loads ramped in "
+      "'Load steps' equal increments (time = load factor 0..1).");
     prm.declare_entry("End time", "2", Patterns::Double(0., 1e9), "Simulated time in s.");
-    prm.declare_entry("Time step", "0.0166666666666667", Patterns::Double(1e-12, 1e6),
+    prm.declare_entry("Time step",
+                      "0.0166666666666667",
+                      Patterns::Double(1e-12, 1e6),
                       "Time step dt in s (backward euler).");
-    prm.declare_entry("Maximum step halvings",
-                      "8",
-                      Patterns::Integer(0, 30),
-                      "A step whose Newton solve fails is retried with half the step, at most "
-                      "this many times in a row; then the run stops with an error.");
+    prm.declare_entry(
+      "Maximum step halvings",
+      "8",
+      Patterns::Integer(0, 30),
+      "A step whose Newton solve fails is retried with half the step, at most "
+      "this many times in a row; then the run stops with an error.");
     prm.declare_entry("Load steps",
                       "10",
                       Patterns::Integer(1, 100000),
@@ -242,11 +276,11 @@ namespace clothsim
   }
 
   void
-  TimeParameters::parse_parameters(ParameterHandler &prm)
+    TimeParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time");
-    integrator = prm.get("Integrator") == "static" ? Integrator::static_load_steps :
-                                                     Integrator::backward_euler;
+    integrator        = prm.get("Integrator") == "static" ? Integrator::static_load_steps
+                                                          : Integrator::backward_euler;
     end_time          = prm.get_double("End time");
     time_step         = prm.get_double("Time step");
     max_step_halvings = prm.get_integer("Maximum step halvings");
@@ -256,7 +290,7 @@ namespace clothsim
 
 
   void
-  NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
+    NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
     prm.declare_entry("Maximum iterations",
@@ -267,43 +301,47 @@ namespace clothsim
                       "1e-9",
                       Patterns::Double(0., 1e10),
                       "Converged when the residual's 2-norm (N) is below this, ...");
-    prm.declare_entry("Relative tolerance",
-                      "1e-8",
-                      Patterns::Double(0., 1.),
-                      "... or below this times the residual at the step's first iterate.");
-    prm.declare_entry("Line search",
-                      "polynomial",
-                      Patterns::Selection("polynomial|backtrack|full step"),
-                      "NOX line search on the incremental potential: 'polynomial' (Armijo "
-                      "sufficient decrease, quadratic/cubic interpolation), 'backtrack' "
-                      "(halving until the potential decreases), 'full step' (none).");
-    prm.declare_entry("Displacement tolerance",
-                      "1e-6",
-                      Patterns::Double(0., 1e3),
-                      "... or when a full Newton step (not cut by the line search) moves no "
-                      "vertex coordinate by more than this (m). 0 disables this criterion.");
-    prm.declare_entry("Tangent",
-                      "adaptive",
-                      Patterns::Selection("adaptive|projected|exact"),
-                      "Compression makes the membrane Hessian indefinite. 'projected': the "
-                      "geometric stiffness keeps only as much compressive stress as the step's "
-                      "mass term pays for, so the tangent is positive definite and CG is valid "
-                      "(Newton converges linearly where the sheet is strongly compressed). "
-                      "'exact': the true Hessian (quadratic convergence; CG may break down, "
-                      "use 'gmres' or 'direct'). 'adaptive': the exact Hessian, replaced by the "
-                      "projected one for a Newton iteration whose linear solve fails or does "
-                      "not give a descent direction.");
+    prm.declare_entry(
+      "Relative tolerance",
+      "1e-8",
+      Patterns::Double(0., 1.),
+      "... or below this times the residual at the step's first iterate.");
+    prm.declare_entry(
+      "Line search",
+      "energy",
+      Patterns::Selection("energy|full step"),
+      "'energy': backtracking until the step's incremental potential decreases "
+      "enough (Armijo); below its round-off, until the residual decreases. "
+      "'full step': no line search.");
+    prm.declare_entry(
+      "Displacement tolerance",
+      "1e-6",
+      Patterns::Double(0., 1e3),
+      "... or when a full Newton step (not cut by the line search) moves no "
+      "vertex coordinate by more than this (m). 0 disables this criterion.");
+    prm.declare_entry(
+      "Tangent",
+      "adaptive",
+      Patterns::Selection("adaptive|projected|exact"),
+      "Compression makes the membrane Hessian indefinite. 'projected': the "
+      "geometric stiffness keeps only as much compressive stress as the step's "
+      "mass term pays for, so the tangent is positive definite and CG is valid "
+      "(Newton converges linearly where the sheet is strongly compressed). "
+      "'exact': the true Hessian (quadratic convergence; CG may break down, "
+      "use 'gmres' or 'direct'). 'adaptive': the exact Hessian, replaced by the "
+      "projected one for a Newton iteration whose linear solve fails or does "
+      "not give a descent direction.");
     prm.leave_subsection();
   }
 
   void
-  NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
+    NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
-    max_iterations     = prm.get_integer("Maximum iterations");
-    absolute_tolerance = prm.get_double("Absolute tolerance");
-    relative_tolerance = prm.get_double("Relative tolerance");
-    line_search        = prm.get("Line search");
+    max_iterations         = prm.get_integer("Maximum iterations");
+    absolute_tolerance     = prm.get_double("Absolute tolerance");
+    relative_tolerance     = prm.get_double("Relative tolerance");
+    line_search            = prm.get("Line search");
     displacement_tolerance = prm.get_double("Displacement tolerance");
     tangent                = prm.get("Tangent");
     prm.leave_subsection();
@@ -311,23 +349,26 @@ namespace clothsim
 
 
   void
-  LinearSolverParameters::declare_parameters(ParameterHandler &prm)
+    LinearSolverParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
-    prm.declare_entry("Method",
-                      "cg",
-                      Patterns::Selection(solver_methods),
-                      "Krylov method for each Newton step: 'cg' (needs the projected tangent), "
-                      "'gmres', or 'direct' (Amesos KLU; small systems).");
-    prm.declare_entry("Preconditioner",
-                      "amg",
-                      Patterns::Selection("amg|jacobi"),
-                      "'amg': ML smoothed-aggregation algebraic multigrid with one constant "
-                      "mode per displacement component; 'jacobi': point Jacobi.");
-    prm.declare_entry("Relative tolerance",
-                      "1e-6",
-                      Patterns::Double(1e-16, 1.),
-                      "Krylov stopping criterion, relative to the Newton residual's 2-norm.");
+    prm.declare_entry(
+      "Method",
+      "cg",
+      Patterns::Selection(solver_methods),
+      "Krylov method for each Newton step: 'cg' (needs the projected tangent), "
+      "'gmres', or 'direct' (Amesos KLU; small systems).");
+    prm.declare_entry(
+      "Preconditioner",
+      "amg",
+      Patterns::Selection("amg|jacobi"),
+      "'amg': ML smoothed-aggregation algebraic multigrid with one constant "
+      "mode per displacement component; 'jacobi': point Jacobi.");
+    prm.declare_entry(
+      "Relative tolerance",
+      "1e-6",
+      Patterns::Double(1e-16, 1.),
+      "Krylov stopping criterion, relative to the Newton residual's 2-norm.");
     prm.declare_entry("Maximum iterations",
                       "2000",
                       Patterns::Integer(1, 1000000),
@@ -344,7 +385,7 @@ namespace clothsim
   }
 
   void
-  LinearSolverParameters::parse_parameters(ParameterHandler &prm)
+    LinearSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
     method                    = prm.get("Method");
@@ -358,35 +399,41 @@ namespace clothsim
 
 
   void
-  OutputParameters::declare_parameters(ParameterHandler &prm)
+    OutputParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    prm.declare_entry("Output interval",
-                      "0.0333333333333333",
-                      Patterns::Double(0., 1e9),
-                      "Simulated time in s between VTK frames and probe rows (0: every step). "
-                      "The first and last states are always written.");
-    prm.declare_entry("Write VTK", "true", Patterns::Bool(), "Write solution.pvd and its frames.");
-    prm.declare_entry("Probes",
-                      "",
-                      Patterns::Map(Patterns::Anything(),
-                                    Patterns::List(Patterns::Double(), 3, 3, ","),
-                                    0,
-                                    1000,
-                                    ";",
-                                    ":"),
-                      "Named reference points 'name: X, Y, Z; name2: X, Y, Z' (m). Each snaps to "
-                      "the nearest mesh vertex; probes.csv records its reference position and "
-                      "displacement.");
-    prm.declare_entry("Progress",
-                      "auto",
-                      Patterns::Selection("auto|on|off"),
-                      "One updating progress line with ETA: 'auto' shows it on a terminal only.");
+    prm.declare_entry(
+      "Output interval",
+      "0.0333333333333333",
+      Patterns::Double(0., 1e9),
+      "Simulated time in s between VTK frames and probe rows (0: every step). "
+      "The first and last states are always written.");
+    prm.declare_entry("Write VTK",
+                      "true",
+                      Patterns::Bool(),
+                      "Write solution.pvd and its frames.");
+    prm.declare_entry(
+      "Probes",
+      "",
+      Patterns::Map(Patterns::Anything(),
+                    Patterns::List(Patterns::Double(), 3, 3, ","),
+                    0,
+                    1000,
+                    ";",
+                    ":"),
+      "Named reference points 'name: X, Y, Z; name2: X, Y, Z' (m). Each snaps to "
+      "the nearest mesh vertex; probes.csv records its reference position and "
+      "displacement.");
+    prm.declare_entry(
+      "Progress",
+      "auto",
+      Patterns::Selection("auto|on|off"),
+      "One updating progress line with ETA: 'auto' shows it on a terminal only.");
     prm.leave_subsection();
   }
 
   void
-  OutputParameters::parse_parameters(ParameterHandler &prm)
+    OutputParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
     interval  = prm.get_double("Output interval");
@@ -405,7 +452,7 @@ namespace clothsim
 
 
   void
-  Parameters::declare_parameters(ParameterHandler &prm)
+    Parameters::declare_parameters(ParameterHandler &prm)
   {
     SceneParameters::declare_parameters(prm);
     MaterialParameters::declare_parameters(prm);
@@ -419,7 +466,7 @@ namespace clothsim
   }
 
   void
-  Parameters::parse_parameters(ParameterHandler &prm)
+    Parameters::parse_parameters(ParameterHandler &prm)
   {
     scene.parse_parameters(prm);
     material.parse_parameters(prm);
@@ -434,9 +481,9 @@ namespace clothsim
 
 
   ParameterInput
-  read_parameters(ParameterHandler               &prm,
-                  const std::string              &file,
-                  const std::vector<std::string> &overrides)
+    read_parameters(ParameterHandler               &prm,
+                    const std::string              &file,
+                    const std::vector<std::string> &overrides)
   {
     Parameters::declare_parameters(prm);
 
@@ -468,8 +515,7 @@ namespace clothsim
         const auto equals = assignment.find('=');
         if (equals == std::string::npos)
           throw InputError("--set", assignment, "expected \"Section/Name=value\"");
-        const auto path =
-          Utilities::split_string_list(assignment.substr(0, equals), '/');
+        const auto path = Utilities::split_string_list(assignment.substr(0, equals), '/');
         const std::string value = Utilities::trim(assignment.substr(equals + 1));
         try
           {
@@ -481,17 +527,22 @@ namespace clothsim
           }
         catch (const std::exception &e)
           {
-            throw InputError("--set",
-                             assignment.substr(0, equals),
-                             "no such entry, or the value does not match its pattern (see "
-                             "clothsim --print-parameters): " +
-                               one_line(e));
+            throw InputError(
+              "--set",
+              assignment.substr(0, equals),
+              "no such entry, or the value does not match its pattern (see "
+              "clothsim --print-parameters): " +
+                one_line(e));
           }
       }
 
     try
       {
         input.parameters.parse_parameters(prm);
+      }
+    catch (const InputError &e)
+      {
+        throw InputError(file, e.entry, e.message);
       }
     catch (const std::exception &e)
       {
@@ -502,7 +553,9 @@ namespace clothsim
     // Checks that patterns cannot express.
     for (const Probe &probe : input.parameters.output.probes)
       if (probe.name.empty() || probe.name.find(',') != std::string::npos)
-        throw InputError(file, "Output/Probes", "probe names must be non-empty, without commas");
+        throw InputError(file,
+                         "Output/Probes",
+                         "probe names must be non-empty, without commas");
     return input;
   }
 } // namespace clothsim

@@ -1,11 +1,13 @@
 #pragma once
 
-// Every run parameter, one struct per concept (declare_parameters / parse_parameters as in deal.II
-// step-44). Units are in each entry's documentation; `clothsim --print-parameters` lists them all.
+// Every run parameter, one struct per concept (declare_parameters / parse_parameters as
+// in deal.II step-44). Units are in each entry's documentation; `clothsim
+// --print-parameters` lists them all.
 
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -19,8 +21,10 @@ namespace clothsim
     std::string  mesh_file;          // relative to the parameter file's directory
     unsigned int global_refinements; // uniform refinements of the mesh as read
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   struct MaterialParameters
@@ -30,8 +34,10 @@ namespace clothsim
     double areal_density;     // kg/m²
     bool   lumped_mass;
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   struct DampingParameters
@@ -39,25 +45,38 @@ namespace clothsim
     double mass_proportional;      // α, 1/s: damping force -α M v
     double stiffness_proportional; // β, s:   damping force -β K v
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   struct LoadParameters
   {
     Tensor<1, 3> gravity; // m/s²
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
+  };
+
+  // A mesh group whose vertices follow the pinned displacement in the given components.
+  struct PinnedGroup
+  {
+    std::string         name;
+    std::array<bool, 3> components; // x, y, z
   };
 
   struct ConstraintParameters
   {
-    std::vector<std::string> pinned_groups;
-    std::string              pinned_displacement; // FunctionParser expression, x;y;z in m of (x,y,z,t)
+    std::vector<PinnedGroup> pinned_groups;
+    std::string pinned_displacement; // FunctionParser expression, x;y;z in m of (x,y,z,t)
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   enum class Integrator
@@ -74,8 +93,10 @@ namespace clothsim
     unsigned int max_step_halvings;
     unsigned int load_steps; // static mode
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   struct NonlinearSolverParameters
@@ -83,12 +104,14 @@ namespace clothsim
     unsigned int max_iterations;
     double       absolute_tolerance; // N
     double       relative_tolerance;
-    std::string  line_search; // "polynomial", "backtrack", "full step"
-    std::string  tangent; // "adaptive", "projected", "exact"
+    std::string  line_search;            // "polynomial", "backtrack", "full step"
+    std::string  tangent;                // "adaptive", "projected", "exact"
     double       displacement_tolerance; // m
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   struct LinearSolverParameters
@@ -100,8 +123,10 @@ namespace clothsim
     unsigned int amg_smoother_sweeps;
     double       amg_aggregation_threshold;
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   struct Probe
@@ -117,8 +142,10 @@ namespace clothsim
     std::vector<Probe> probes;
     std::string        progress; // "auto", "on", "off"
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   struct Parameters
@@ -133,23 +160,25 @@ namespace clothsim
     LinearSolverParameters    linear_solver;
     OutputParameters          output;
 
-    static void declare_parameters(ParameterHandler &prm);
-    void        parse_parameters(ParameterHandler &prm);
+    static void
+      declare_parameters(ParameterHandler &prm);
+    void
+      parse_parameters(ParameterHandler &prm);
   };
 
   // The parameter file as read, with command-line overrides applied.
   struct ParameterInput
   {
-    std::string                      file;      // as given on the command line
-    std::string                      directory; // its directory, for relative paths in it
-    std::vector<std::string>         overrides; // "Section/Name=value"
-    Parameters                       parameters;
+    std::string              file;      // as given on the command line
+    std::string              directory; // its directory, for relative paths in it
+    std::vector<std::string> overrides; // "Section/Name=value"
+    Parameters               parameters;
   };
 
-  // Declares everything in `prm`, reads `file` (.prm or .json), applies `overrides`, parses.
-  // Throws InputError naming the file (or "--set") and the entry on any problem.
+  // Declares everything in `prm`, reads `file` (.prm or .json), applies `overrides`,
+  // parses. Throws InputError naming the file (or "--set") and the entry on any problem.
   ParameterInput
-  read_parameters(ParameterHandler               &prm,
-                  const std::string              &file,
-                  const std::vector<std::string> &overrides);
+    read_parameters(ParameterHandler               &prm,
+                    const std::string              &file,
+                    const std::vector<std::string> &overrides);
 } // namespace clothsim

@@ -9,10 +9,10 @@
 namespace clothsim
 {
   Progress::Progress(std::ostream &out, const std::string &mode, const bool active)
-    : out(out)
-    , enabled(active && mode != "off")
-    , terminal(isatty(fileno(stdout)) != 0)
-    , start(std::chrono::steady_clock::now())
+      : out(out)
+      , enabled(active && mode != "off")
+      , terminal(isatty(fileno(stdout)) != 0)
+      , start(std::chrono::steady_clock::now())
   {
     if (mode == "auto" && !terminal)
       enabled = false;
@@ -20,13 +20,13 @@ namespace clothsim
 
 
   void
-  Progress::update(const double fraction, const std::string &state)
+    Progress::update(const double fraction, const std::string &state)
   {
     if (!enabled)
       return;
     const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double eta = fraction > 0. ? elapsed * (1. - fraction) / fraction : 0.;
+    const double       eta = fraction > 0. ? elapsed * (1. - fraction) / fraction : 0.;
     std::ostringstream line;
     line << std::fixed << std::setprecision(1) << std::setw(5) << 100. * fraction << "%  "
          << state << "  elapsed " << elapsed << " s  ETA " << eta << " s";
@@ -45,7 +45,7 @@ namespace clothsim
 
 
   void
-  Progress::finish()
+    Progress::finish()
   {
     if (line_open)
       out << '\n' << std::flush;

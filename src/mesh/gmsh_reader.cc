@@ -29,6 +29,8 @@ namespace clothsim::mesh
       names.insert(group.first);
     for (const auto &group : point_groups)
       names.insert(group.first);
+    for (const auto &group : surface_groups)
+      names.insert(group.first);
     return {names.begin(), names.end()};
   }
 
@@ -69,12 +71,20 @@ namespace clothsim::mesh
       std::vector<std::size_t> nodes;
     };
 
+    struct RawSurfaceGroup
+    {
+      std::string              name;
+      int                      tag;
+      std::vector<std::size_t> triangles; // element tags
+    };
+
     struct RawMesh
     {
       std::unordered_map<std::size_t, Point<3>> node_coordinates;
       std::vector<RawTriangle>                  triangles;
       std::vector<RawLineGroup>                 line_groups;
       std::vector<RawPointGroup>                point_groups;
+      std::vector<RawSurfaceGroup>              surface_groups;
     };
 
 
@@ -298,9 +308,10 @@ namespace clothsim::mesh
                                element_type_name(types[k]) +
                                "; only 3-node triangles (gmsh type 2) are supported");
           for (std::size_t e = 0; e < element_tags[k].size(); ++e)
-            raw.triangles.push_back(
-              {element_tags[k][e],
-               {node_tags[k][3 * e], node_tags[k][3 * e + 1], node_tags[k][3 * e + 2]}});
+            raw.triangles.push_back({element_tags[k][e],
+                                     {{node_tags[k][3 * e],
+                                       node_tags[k][3 * e + 1],
+                                       node_tags[k][3 * e + 2]}}});
         }
 
       gmsh::vectorpair groups;
@@ -341,12 +352,30 @@ namespace clothsim::mesh
                       for (std::size_t e = 0; e < element_tags[k].size(); ++e)
                         group.lines.push_back(
                           {element_tags[k][e],
-                           {node_tags[k][2 * e], node_tags[k][2 * e + 1]}});
+                           {{node_tags[k][2 * e], node_tags[k][2 * e + 1]}}});
                     }
                 }
               raw.line_groups.push_back(std::move(group));
             }
-          // Surface groups need no action; volume groups are empty (no volume elements).
+          else if (dim == 2)
+            {
+              RawSurfaceGroup  group{name, tag, {}};
+              std::vector<int> surfaces;
+              gmsh::model::getEntitiesForPhysicalGroup(2, tag, surfaces);
+              for (const int surface : surfaces)
+                {
+                  gmsh::model::mesh::getElements(
+                    types, element_tags, node_tags, 2, surface);
+                  // Element types other than triangles were rejected above.
+                  for (unsigned int k = 0; k < types.size(); ++k)
+                    if (types[k] == gmsh_triangle_type)
+                      group.triangles.insert(group.triangles.end(),
+                                             element_tags[k].begin(),
+                                             element_tags[k].end());
+                }
+              raw.surface_groups.push_back(std::move(group));
+            }
+          // Volume groups are empty (no volume elements).
         }
 
       return raw;
@@ -573,6 +602,55 @@ namespace clothsim::mesh
                                  "'; a boundary edge can be in one line group only");
           }
       }
+
+    // Surface groups: material id = physical tag, on the triangles they hold.
+    {
+      std::unordered_map<std::size_t, unsigned int> cell_of_triangle;
+      for (unsigned int c = 0; c < n_cells; ++c)
+        cell_of_triangle.emplace(raw.triangles[c].tag, c);
+      // Surface group of each cell (index into raw.surface_groups), or none.
+      constexpr unsigned int    no_group = numbers::invalid_unsigned_int;
+      std::vector<unsigned int> group_of_cell(n_cells, no_group);
+      for (unsigned int g = 0; g < raw.surface_groups.size(); ++g)
+        {
+          const RawSurfaceGroup &group = raw.surface_groups[g];
+          if (group.tag < 1 ||
+              static_cast<unsigned long long>(group.tag) >=
+                static_cast<unsigned long long>(numbers::invalid_material_id))
+            throw InputError(msh_file,
+                             group.name,
+                             "physical tag " + std::to_string(group.tag) +
+                               " cannot serve as a material id (must be in 1.." +
+                               std::to_string(numbers::invalid_material_id - 1) + ")");
+          const auto id = static_cast<types::material_id>(group.tag);
+          if (!groups.surface_groups.emplace(group.name, id).second)
+            throw InputError(msh_file,
+                             group.name,
+                             "two surface groups have this name (physical tags " +
+                               std::to_string(groups.surface_groups[group.name]) +
+                               " and " + std::to_string(group.tag) + ")");
+
+          for (const std::size_t triangle : group.triangles)
+            {
+              const auto cell = cell_of_triangle.find(triangle);
+              if (cell == cell_of_triangle.end())
+                throw InputError(msh_file,
+                                 group.name,
+                                 "element " + std::to_string(triangle) +
+                                   " is not one of the mesh's triangles");
+              unsigned int &previous = group_of_cell[cell->second];
+              if (previous != no_group && previous != g)
+                throw InputError(msh_file,
+                                 group.name,
+                                 "triangle " + std::to_string(triangle) +
+                                   " is also in surface group '" +
+                                   raw.surface_groups[previous].name +
+                                   "'; a triangle can be in one surface group only");
+              previous                        = g;
+              cells[cell->second].material_id = id;
+            }
+        }
+    }
 
     // Point groups: coordinates of their nodes, which must be vertices of the triangles.
     for (const RawPointGroup &group : raw.point_groups)

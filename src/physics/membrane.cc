@@ -6,7 +6,8 @@ namespace clothsim::physics
 {
   namespace
   {
-    // First fundamental form a_ab = a_a . a_b of the edge basis a_1 = x1 - x0, a_2 = x2 - x0.
+    // First fundamental form a_ab = a_a . a_b of the edge basis a_1 = x1 - x0, a_2 = x2 -
+    // x0.
     struct EdgeBasis
     {
       Tensor<1, 3> a[2];
@@ -14,7 +15,7 @@ namespace clothsim::physics
     };
 
     EdgeBasis
-    edge_basis(const TrianglePositions &x)
+      edge_basis(const TrianglePositions &x)
     {
       EdgeBasis basis;
       basis.a[0] = x[1] - x[0];
@@ -33,14 +34,15 @@ namespace clothsim::physics
     };
 
     Coefficients
-    coefficients(const MembraneMaterial &material)
+      coefficients(const MembraneMaterial &material)
     {
       const double nu = material.poisson_ratio;
       const double k  = material.stretch_stiffness;
       return {k * nu / (1. - nu * nu), k / (2. * (1. + nu))};
     }
 
-    // Green strain E (covariant), mixed M = Ā⁻¹ E, stress S (contravariant) and energy density.
+    // Green strain E (covariant), mixed M = Ā⁻¹ E, stress S (contravariant) and energy
+    // density.
     struct StrainState
     {
       Tensor<2, 2> strain;
@@ -51,27 +53,27 @@ namespace clothsim::physics
     };
 
     StrainState
-    strain_state(const Coefficients     &c,
-                 const MembraneRestData &rest,
-                 const Tensor<2, 2>     &metric)
+      strain_state(const Coefficients     &c,
+                   const MembraneRestData &rest,
+                   const Tensor<2, 2>     &metric)
     {
       const Tensor<2, 2> &Q = rest.inverse_metric;
       StrainState         s;
       // E = (a - Ā)/2; tr(M) = Q:E, tr(M²) = (QEQ):E.
-      s.strain = 0.5 * (metric - rest.metric);
+      s.strain               = 0.5 * (metric - rest.metric);
       const Tensor<2, 2> QEQ = Q * s.strain * Q;
       s.trace_m              = scalar_product(Q, s.strain);
       s.trace_m2             = scalar_product(QEQ, s.strain);
-      s.energy_density = 0.5 * c.lambda * s.trace_m * s.trace_m + c.mu * s.trace_m2;
-      s.stress         = c.lambda * s.trace_m * Q + 2. * c.mu * QEQ;
+      s.energy_density       = 0.5 * c.lambda * s.trace_m * s.trace_m + c.mu * s.trace_m2;
+      s.stress               = c.lambda * s.trace_m * Q + 2. * c.mu * QEQ;
       return s;
     }
 
     // A symmetric 2x2 tensor with its eigenvalues clamped below at `floor` (<= 0).
     Tensor<2, 2>
-    clamp_below(const Tensor<2, 2> &S, const double floor)
+      clamp_below(const Tensor<2, 2> &S, const double floor)
     {
-      const double mean = 0.5 * (S[0][0] + S[1][1]);
+      const double mean      = 0.5 * (S[0][0] + S[1][1]);
       const double half_diff = 0.5 * (S[0][0] - S[1][1]);
       const double radius    = std::sqrt(half_diff * half_diff + S[0][1] * S[0][1]);
       const double l1 = mean + radius, l2 = mean - radius;
@@ -93,12 +95,12 @@ namespace clothsim::physics
 
 
   MembraneRestData
-  membrane_rest_data(const TrianglePositions &reference)
+    membrane_rest_data(const TrianglePositions &reference)
   {
-    const EdgeBasis basis = edge_basis(reference);
-    const double    det   = determinant(basis.metric);
+    const EdgeBasis  basis = edge_basis(reference);
+    const double     det   = determinant(basis.metric);
     MembraneRestData rest;
-    rest.area = det > 0. ? 0.5 * std::sqrt(det) : 0.;
+    rest.area   = det > 0. ? 0.5 * std::sqrt(det) : 0.;
     rest.metric = basis.metric;
     if (det > 0.)
       rest.inverse_metric = invert(basis.metric);
@@ -107,30 +109,29 @@ namespace clothsim::physics
 
 
   double
-  membrane_energy(const MembraneMaterial &material,
-                  const MembraneRestData &rest,
-                  const TrianglePositions &current)
+    membrane_energy(const MembraneMaterial  &material,
+                    const MembraneRestData  &rest,
+                    const TrianglePositions &current)
   {
     const EdgeBasis   basis = edge_basis(current);
-    const StrainState s =
-      strain_state(coefficients(material), rest, basis.metric);
+    const StrainState s     = strain_state(coefficients(material), rest, basis.metric);
     return rest.area * s.energy_density;
   }
 
 
   double
-  membrane_energy_gradient_hessian(const MembraneMaterial &material,
-                                   const MembraneRestData &rest,
-                                   const TrianglePositions &current,
-                                   const double             stress_floor,
-                                   ElementVector           &gradient,
-                                   ElementMatrix           *hessian)
+    membrane_energy_gradient_hessian(const MembraneMaterial  &material,
+                                     const MembraneRestData  &rest,
+                                     const TrianglePositions &current,
+                                     const double             stress_floor,
+                                     ElementVector           &gradient,
+                                     ElementMatrix           *hessian)
   {
-    const Coefficients c     = coefficients(material);
-    const Tensor<2, 2> &Q    = rest.inverse_metric;
-    const EdgeBasis    basis = edge_basis(current);
-    const StrainState  s     = strain_state(c, rest, basis.metric);
-    const double       A     = rest.area;
+    const Coefficients  c     = coefficients(material);
+    const Tensor<2, 2> &Q     = rest.inverse_metric;
+    const EdgeBasis     basis = edge_basis(current);
+    const StrainState   s     = strain_state(c, rest, basis.metric);
+    const double        A     = rest.area;
 
     // f_a = dW/da_a = |T̄| S^ab a_b; x1 and x2 get f_1, f_2, x0 gets -(f_1 + f_2).
     Tensor<1, 3> f[2];
@@ -145,9 +146,8 @@ namespace clothsim::physics
 
     if (hessian != nullptr)
       {
-        const Tensor<2, 2> S_geo = std::isinf(stress_floor) ?
-                                     s.stress :
-                                     clamp_below(s.stress, -stress_floor);
+        const Tensor<2, 2> S_geo =
+          std::isinf(stress_floor) ? s.stress : clamp_below(s.stress, -stress_floor);
 
         // Blocks H_ac = d²W/da_a da_c (3x3) for a, c in {1, 2}.
         Tensor<2, 3> H[2][2];
@@ -169,8 +169,8 @@ namespace clothsim::physics
               H[a][cc] = A * block;
             }
 
-        // Chain rule through a_1 = x1 - x0, a_2 = x2 - x0: vertex v has weights w_v on (a_1, a_2):
-        // w_0 = (-1, -1), w_1 = (1, 0), w_2 = (0, 1).
+        // Chain rule through a_1 = x1 - x0, a_2 = x2 - x0: vertex v has weights w_v on
+        // (a_1, a_2): w_0 = (-1, -1), w_1 = (1, 0), w_2 = (0, 1).
         static constexpr double w[3][2] = {{-1., -1.}, {1., 0.}, {0., 1.}};
         for (unsigned int v = 0; v < 3; ++v)
           for (unsigned int u = 0; u < 3; ++u)
@@ -190,19 +190,22 @@ namespace clothsim::physics
 
 
   MembraneStrainStress
-  membrane_strain_stress(const MembraneMaterial &material,
-                         const MembraneRestData &rest,
-                         const TrianglePositions &current)
+    membrane_strain_stress(const MembraneMaterial  &material,
+                           const MembraneRestData  &rest,
+                           const TrianglePositions &current)
   {
     const EdgeBasis   basis = edge_basis(current);
-    const StrainState s =
-      strain_state(coefficients(material), rest, basis.metric);
+    const StrainState s     = strain_state(coefficients(material), rest, basis.metric);
     // Mixed stress S Ā has the principal stresses as eigenvalues.
-    const Tensor<2, 2> mixed_stress = s.stress * rest.metric;
+    const Tensor<2, 2>   mixed_stress = s.stress * rest.metric;
     MembraneStrainStress out;
     out.green_strain_norm = std::sqrt(std::max(s.trace_m2, 0.));
-    out.stress_norm       = std::sqrt(std::max(scalar_product(mixed_stress, transpose(mixed_stress)), 0.));
-    out.area_ratio = rest.area > 0. ? 0.5 * std::sqrt(std::max(determinant(basis.metric), 0.)) / rest.area : 0.;
+    out.stress_norm =
+      std::sqrt(std::max(scalar_product(mixed_stress, transpose(mixed_stress)), 0.));
+    out.area_ratio =
+      rest.area > 0.
+        ? 0.5 * std::sqrt(std::max(determinant(basis.metric), 0.)) / rest.area
+        : 0.;
     return out;
   }
 } // namespace clothsim::physics

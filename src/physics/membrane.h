@@ -1,29 +1,33 @@
 #pragma once
 
-// Membrane energy of a thin sheet: isotropic plane-stress St. Venant–Kirchhoff on the Green
-// strain of the surface, on linear (3-node) triangles. Pure functions: rest data + current
-// vertex positions -> energy, gradient, Hessian. Assembly and constraints live elsewhere.
+// Membrane energy of a thin sheet: isotropic plane-stress St. Venant–Kirchhoff on the
+// Green strain of the surface, on linear (3-node) triangles. Pure functions: rest data +
+// current vertex positions -> energy, gradient, Hessian. Assembly and constraints live
+// elsewhere.
 //
 // Per triangle with reference vertices X0, X1, X2 and current x0, x1, x2:
-//   covariant basis        a_1 = x1 - x0,  a_2 = x2 - x0   (Ā from the reference vertices)
-//   first fundamental form a_ab = a_a . a_b
-//   Green strain           E_ab = (a_ab - Ā_ab) / 2,   M = Ā⁻¹ E  (mixed, eigenvalues are the
+//   covariant basis        a_1 = x1 - x0,  a_2 = x2 - x0   (Ā from the reference
+//   vertices) first fundamental form a_ab = a_a . a_b Green strain           E_ab = (a_ab
+//   - Ā_ab) / 2,   M = Ā⁻¹ E  (mixed, eigenvalues are the
 //                                                      principal Green strains)
-//   energy                 W = |T̄| k [ λ'/2 (tr M)² + μ' tr(M²) ],  λ' = ν/(1-ν²), μ' = 1/(2(1+ν))
-// with k = E h the stretch stiffness in N/m (Ciarlet, "Mathematical Elasticity III", ch. 4;
-// the membrane part of the Koiter energy, Terzopoulos et al. 1987's ||G - G⁰||²).
+//   energy                 W = |T̄| k [ λ'/2 (tr M)² + μ' tr(M²) ],  λ' = ν/(1-ν²), μ' =
+//   1/(2(1+ν))
+// with k = E h the stretch stiffness in N/m (Ciarlet, "Mathematical Elasticity III", ch.
+// 4; the membrane part of the Koiter energy, Terzopoulos et al. 1987's ||G - G⁰||²).
 //   2nd Piola-Kirchhoff stress resultant (contravariant, N/m)
 //                          S = k [ λ' tr(M) Ā⁻¹ + 2 μ' Ā⁻¹ E Ā⁻¹ ]
 //   gradient               dW/da_a = |T̄| S^ab a_b
 //   Hessian                d²W/da_a da_c = |T̄| [ S^ac I + C^abcd a_b ⊗ a_d ],
-//                          C^abcd = k [ λ' Q^ab Q^cd + μ' (Q^ac Q^bd + Q^ad Q^bc) ],  Q = Ā⁻¹.
-// The material part (C) is positive semi-definite for 0 <= ν < 1/2; the geometric part S^ac I is
-// indefinite under compression. The tangent can clamp the eigenvalues of the matrix S^ac from
-// below at -s_min (s_min >= 0, N/m): s_min = 0 gives a positive semi-definite element Hessian
-// (a tension-field tangent), s_min = ∞ the exact one. Since the geometric block is
-// |T̄| (B S Bᵀ) ⊗ I with B the 3x2 vertex weights (|B|² = 3), clamping at
-// -s_min = -m_min / (3 |T̄|) keeps geometric + m_min I positive semi-definite: a time step's mass
-// term pays for the compression, and Newton stays exact wherever it can (see ClothModel).
+//                          C^abcd = k [ λ' Q^ab Q^cd + μ' (Q^ac Q^bd + Q^ad Q^bc) ],  Q =
+//                          Ā⁻¹.
+// The material part (C) is positive semi-definite for 0 <= ν < 1/2; the geometric part
+// S^ac I is indefinite under compression. The tangent can clamp the eigenvalues of the
+// matrix S^ac from below at -s_min (s_min >= 0, N/m): s_min = 0 gives a positive
+// semi-definite element Hessian (a tension-field tangent), s_min = ∞ the exact one. Since
+// the geometric block is |T̄| (B S Bᵀ) ⊗ I with B the 3x2 vertex weights (|B|² = 3),
+// clamping at -s_min = -m_min / (3 |T̄|) keeps geometric + m_min I positive semi-definite:
+// a time step's mass term pays for the compression, and Newton stays exact wherever it
+// can (see ClothModel).
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -55,35 +59,36 @@ namespace clothsim::physics
 
   // Rest data from the reference positions. Returns area 0 for a degenerate triangle.
   MembraneRestData
-  membrane_rest_data(const TrianglePositions &reference);
+    membrane_rest_data(const TrianglePositions &reference);
 
   // Energy W (J) of one triangle.
   double
-  membrane_energy(const MembraneMaterial &material,
-                  const MembraneRestData &rest,
-                  const TrianglePositions &current);
+    membrane_energy(const MembraneMaterial  &material,
+                    const MembraneRestData  &rest,
+                    const TrianglePositions &current);
 
-  // Energy, gradient dW/dx (N, ordered x0.x, x0.y, x0.z, x1.x, ...) and Hessian d²W/dx² (N/m).
-  // `hessian` may be null when only the gradient is needed. The Hessian's geometric part uses
-  // S with eigenvalues clamped below at -stress_floor (N/m; infinity: exact Hessian).
+  // Energy, gradient dW/dx (N, ordered x0.x, x0.y, x0.z, x1.x, ...) and Hessian d²W/dx²
+  // (N/m). `hessian` may be null when only the gradient is needed. The Hessian's
+  // geometric part uses S with eigenvalues clamped below at -stress_floor (N/m; infinity:
+  // exact Hessian).
   double
-  membrane_energy_gradient_hessian(const MembraneMaterial &material,
-                                   const MembraneRestData &rest,
-                                   const TrianglePositions &current,
-                                   const double             stress_floor,
-                                   ElementVector           &gradient,
-                                   ElementMatrix           *hessian);
+    membrane_energy_gradient_hessian(const MembraneMaterial  &material,
+                                     const MembraneRestData  &rest,
+                                     const TrianglePositions &current,
+                                     const double             stress_floor,
+                                     ElementVector           &gradient,
+                                     ElementMatrix           *hessian);
 
   // Strain and stress measures of one triangle for output.
   struct MembraneStrainStress
   {
     double green_strain_norm; // sqrt(tr(M²)), dimensionless
     double stress_norm;       // sqrt(tr((S Ā)²)), N/m
-    double area_ratio;        // |T| / |T̄|; <= 0 never happens for a surface, but 0 = collapsed
+    double area_ratio; // |T| / |T̄|; <= 0 never happens for a surface, but 0 = collapsed
   };
 
   MembraneStrainStress
-  membrane_strain_stress(const MembraneMaterial &material,
-                         const MembraneRestData &rest,
-                         const TrianglePositions &current);
+    membrane_strain_stress(const MembraneMaterial  &material,
+                           const MembraneRestData  &rest,
+                           const TrianglePositions &current);
 } // namespace clothsim::physics

@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <set>
 
 namespace clothsim
 {
@@ -22,12 +21,12 @@ namespace clothsim
                          const std::string         &parameter_file,
                          const Triangulation<2, 3> &serial_mesh,
                          const mesh::MeshGroups    &groups)
-    : communicator(communicator)
-    , parameters(parameters)
-    , triangulation(communicator)
-    , fe(FE_SimplexP<2, 3>(1), 3)
-    , mapping(FE_SimplexP<2, 3>(1))
-    , pinned_displacement(3)
+      : communicator(communicator)
+      , parameters(parameters)
+      , triangulation(communicator)
+      , fe(FE_SimplexP<2, 3>(1), 3)
+      , mapping(FE_SimplexP<2, 3>(1))
+      , pinned_displacement(3)
   {
     material.stretch_stiffness = parameters.material.stretch_stiffness;
     material.poisson_ratio     = parameters.material.poisson_ratio;
@@ -38,10 +37,10 @@ namespace clothsim
 
 
   void
-  ClothModel::build_mesh(const Triangulation<2, 3> &serial_mesh)
+    ClothModel::build_mesh(const Triangulation<2, 3> &serial_mesh)
   {
-    // Every rank holds the same coarse mesh; refine it, partition it with METIS (deterministic),
-    // and keep only this rank's part plus a ghost layer.
+    // Every rank holds the same coarse mesh; refine it, partition it with METIS
+    // (deterministic), and keep only this rank's part plus a ghost layer.
     Triangulation<2, 3> refined;
     refined.copy_triangulation(serial_mesh);
     refined.refine_global(parameters.scene.global_refinements);
@@ -49,14 +48,14 @@ namespace clothsim
     if (n_ranks > 1)
       GridTools::partition_triangulation(n_ranks, refined);
     const auto description =
-      TriangulationDescription::Utilities::create_description_from_triangulation(refined,
-                                                                                  communicator);
+      TriangulationDescription::Utilities::create_description_from_triangulation(
+        refined, communicator);
     triangulation.create_triangulation(description);
   }
 
 
   void
-  ClothModel::setup_dofs()
+    ClothModel::setup_dofs()
   {
     dof_handler.reinit(triangulation);
     dof_handler.distribute_dofs(fe);
@@ -67,7 +66,7 @@ namespace clothsim
     local_dof_vertex_component.resize(fe.n_dofs_per_cell());
     for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
       {
-        const auto component_index = fe.system_to_component_index(i);
+        const auto component_index    = fe.system_to_component_index(i);
         local_dof_vertex_component[i] = {component_index.second, component_index.first};
       }
 
@@ -80,7 +79,7 @@ namespace clothsim
           Element element;
           for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
             {
-              const auto [vertex, component]          = local_dof_vertex_component[i];
+              const auto [vertex, component]       = local_dof_vertex_component[i];
               element.dofs[3 * vertex + component] = dof_indices[i];
             }
           for (unsigned int v = 0; v < 3; ++v)
@@ -92,17 +91,31 @@ namespace clothsim
 
 
   void
-  ClothModel::resolve_pinned(const std::string &parameter_file, const mesh::MeshGroups &groups)
+    ClothModel::resolve_pinned(const std::string      &parameter_file,
+                               const mesh::MeshGroups &groups)
   {
-    std::set<types::boundary_id> pinned_boundary_ids;
-    std::vector<Point<3>>        pinned_points;
-    for (const std::string &name : parameters.constraints.pinned_groups)
+    // Each pinned group as a vertex predicate, with the components it pins.
+    struct GroupPin
+    {
+      std::array<bool, 3>   components;
+      int                   boundary_id = -1; // line group
+      int                   material_id = -1; // surface group
+      std::vector<Point<3>> points;           // point group
+    };
+    std::vector<GroupPin> group_pins;
+    for (const PinnedGroup &group : parameters.constraints.pinned_groups)
       {
-        if (const auto line = groups.line_groups.find(name); line != groups.line_groups.end())
-          pinned_boundary_ids.insert(line->second);
-        else if (const auto point = groups.point_groups.find(name);
+        GroupPin pin;
+        pin.components = group.components;
+        if (const auto line = groups.line_groups.find(group.name);
+            line != groups.line_groups.end())
+          pin.boundary_id = line->second;
+        else if (const auto surface = groups.surface_groups.find(group.name);
+                 surface != groups.surface_groups.end())
+          pin.material_id = surface->second;
+        else if (const auto point = groups.point_groups.find(group.name);
                  point != groups.point_groups.end())
-          pinned_points.insert(pinned_points.end(), point->second.begin(), point->second.end());
+          pin.points = point->second;
         else
           {
             std::string known;
@@ -110,9 +123,11 @@ namespace clothsim
               known += (known.empty() ? "" : ", ") + n;
             throw InputError(parameter_file,
                              "Constraints/Pinned groups",
-                             "the mesh has no point or line group named '" + name +
-                               "' (its point and line groups: " + (known.empty() ? "none" : known) + ")");
+                             "the mesh has no group named '" + group.name +
+                               "' (its groups: " + (known.empty() ? "none" : known) +
+                               ")");
           }
+        group_pins.push_back(pin);
       }
 
     // Matching tolerance for point groups: far below any edge length.
@@ -125,22 +140,35 @@ namespace clothsim
       if (!cell->is_artificial())
         {
           cell->get_dof_indices(dof_indices);
-          std::array<bool, 3> vertex_pinned = {{false, false, false}};
-          for (unsigned int v = 0; v < 3; ++v)
-            for (const Point<3> &p : pinned_points)
-              if (cell->vertex(v).distance(p) < tolerance)
-                vertex_pinned[v] = true;
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary() &&
-                pinned_boundary_ids.count(cell->face(f)->boundary_id()) > 0)
-              for (unsigned int fv = 0; fv < 2; ++fv)
-                for (unsigned int v = 0; v < 3; ++v)
-                  if (cell->vertex_index(v) == cell->face(f)->vertex_index(fv))
-                    vertex_pinned[v] = true;
+          // pinned[vertex][component]
+          std::array<std::array<bool, 3>, 3> pinned_here{};
+          for (const GroupPin &pin : group_pins)
+            {
+              std::array<bool, 3> vertex_in_group = {{false, false, false}};
+              if (pin.material_id >= 0 &&
+                  cell->material_id() == types::material_id(pin.material_id))
+                vertex_in_group = {{true, true, true}};
+              for (unsigned int v = 0; v < 3; ++v)
+                for (const Point<3> &p : pin.points)
+                  if (cell->vertex(v).distance(p) < tolerance)
+                    vertex_in_group[v] = true;
+              if (pin.boundary_id >= 0)
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->face(f)->at_boundary() &&
+                      cell->face(f)->boundary_id() == types::boundary_id(pin.boundary_id))
+                    for (unsigned int fv = 0; fv < 2; ++fv)
+                      for (unsigned int v = 0; v < 3; ++v)
+                        if (cell->vertex_index(v) == cell->face(f)->vertex_index(fv))
+                          vertex_in_group[v] = true;
+              for (unsigned int v = 0; v < 3; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  pinned_here[v][c] =
+                    pinned_here[v][c] || (vertex_in_group[v] && pin.components[c]);
+            }
           for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
             {
               const auto [vertex, component] = local_dof_vertex_component[i];
-              if (vertex_pinned[vertex])
+              if (pinned_here[vertex][component])
                 found[dof_indices[i]] = {dof_indices[i], component, cell->vertex(vertex)};
             }
         }
@@ -180,7 +208,7 @@ namespace clothsim
 
 
   unsigned int
-  ClothModel::n_pinned_dofs() const
+    ClothModel::n_pinned_dofs() const
   {
     unsigned int n_owned = 0;
     for (const PinnedDof &pin : pinned)
@@ -191,21 +219,21 @@ namespace clothsim
 
 
   void
-  ClothModel::initialize_owned(VectorType &vector) const
+    ClothModel::initialize_owned(VectorType &vector) const
   {
     vector.reinit(locally_owned_dofs, communicator);
   }
 
 
   void
-  ClothModel::initialize_ghosted(VectorType &vector) const
+    ClothModel::initialize_ghosted(VectorType &vector) const
   {
     vector.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
   }
 
 
   void
-  ClothModel::initialize_matrix(MatrixType &matrix) const
+    ClothModel::initialize_matrix(MatrixType &matrix) const
   {
     TrilinosWrappers::SparsityPattern sparsity(locally_owned_dofs,
                                                locally_owned_dofs,
@@ -218,7 +246,7 @@ namespace clothsim
 
 
   void
-  ClothModel::apply_pinned_displacement(const double time, VectorType &u) const
+    ClothModel::apply_pinned_displacement(const double time, VectorType &u) const
   {
     pinned_displacement.set_time(time);
     for (const PinnedDof &pin : pinned)
@@ -229,9 +257,9 @@ namespace clothsim
 
 
   void
-  ClothModel::gather(const VectorType                             &vector,
-                     const std::array<types::global_dof_index, 9> &dofs,
-                     std::array<double, 9>                        &values) const
+    ClothModel::gather(const VectorType                             &vector,
+                       const std::array<types::global_dof_index, 9> &dofs,
+                       std::array<double, 9>                        &values) const
   {
     for (unsigned int i = 0; i < 9; ++i)
       values[i] = vector(dofs[i]);
@@ -240,9 +268,13 @@ namespace clothsim
 
   namespace
   {
-    // Element mass matrix per component: lumped ρ|T|/3 δ_ab, or consistent ρ|T|/12 (1 + δ_ab).
+    // Element mass matrix per component: lumped ρ|T|/3 δ_ab, or consistent ρ|T|/12 (1 +
+    // δ_ab).
     inline double
-    mass_entry(const bool lumped, const double vertex_mass, const unsigned int a, const unsigned int b)
+      mass_entry(const bool         lumped,
+                 const double       vertex_mass,
+                 const unsigned int a,
+                 const unsigned int b)
     {
       if (lumped)
         return a == b ? vertex_mass : 0.;
@@ -252,7 +284,7 @@ namespace clothsim
 
 
   void
-  ClothModel::prepare_damping(const VectorType &u_n)
+    ClothModel::prepare_damping(const VectorType &u_n)
   {
     const double beta = parameters.damping.stiffness_proportional;
     if (beta == 0.)
@@ -261,8 +293,8 @@ namespace clothsim
         return;
       }
     damping_tangents.resize(elements.size());
-    std::array<double, 9>     u_e;
-    physics::ElementVector    gradient;
+    std::array<double, 9>  u_e;
+    physics::ElementVector gradient;
     for (unsigned int e = 0; e < elements.size(); ++e)
       {
         const Element &element = elements[e];
@@ -282,24 +314,24 @@ namespace clothsim
 
 
   double
-  ClothModel::assemble(const VectorType &u,
-                       const StepTerms  &terms,
-                       VectorType       *gradient,
-                       MatrixType       *hessian) const
+    ClothModel::assemble(const VectorType &u,
+                         const StepTerms  &terms,
+                         VectorType       *gradient,
+                         MatrixType       *hessian) const
   {
-    const bool   lumped  = parameters.material.lumped_mass;
-    const double rho     = parameters.material.areal_density;
-    const double alpha   = parameters.damping.mass_proportional;
-    const double beta    = parameters.damping.stiffness_proportional;
+    const bool   lumped = parameters.material.lumped_mass;
+    const double rho    = parameters.material.areal_density;
+    const double alpha  = parameters.damping.mass_proportional;
+    const double beta   = parameters.damping.stiffness_proportional;
     // Mass-like coefficient of the quadratic terms: w_i M + w_d α M.
     const double mass_weight = terms.inertia_weight + terms.damping_weight * alpha;
     // Projected tangent: compression in the geometric stiffness is kept down to what the
-    // element's smallest mass eigenvalue m_min (ρ|T̄|/3 lumped, ρ|T̄|/12 consistent) pays for,
-    // s_min = mass_weight m_min / (3|T̄|) (see membrane.h); the element Hessian stays PSD.
-    const double stress_floor =
-      terms.projected_tangent ?
-        mass_weight * rho / (lumped ? 9. : 36.) :
-        std::numeric_limits<double>::infinity();
+    // element's smallest mass eigenvalue m_min (ρ|T̄|/3 lumped, ρ|T̄|/12 consistent) pays
+    // for, s_min = mass_weight m_min / (3|T̄|) (see membrane.h); the element Hessian stays
+    // PSD.
+    const double stress_floor = terms.projected_tangent
+                                  ? mass_weight * rho / (lumped ? 9. : 36.)
+                                  : std::numeric_limits<double>::infinity();
     const bool   use_inertia  = terms.inertia_weight > 0.;
     const bool   use_damping  = terms.damping_weight > 0. && (alpha > 0. || beta > 0.);
     Assert(!use_inertia || terms.predictor != nullptr, ExcInternalError());
@@ -311,13 +343,13 @@ namespace clothsim
     if (hessian != nullptr)
       *hessian = 0.;
 
-    std::array<double, 9>                 u_e, predictor_e, previous_e;
-    physics::ElementVector                g_e;
-    physics::ElementMatrix                H_e;
-    Vector<double>                        cell_vector(9);
-    FullMatrix<double>                    cell_matrix(9, 9);
+    std::array<double, 9>                u_e, predictor_e, previous_e;
+    physics::ElementVector               g_e;
+    physics::ElementMatrix               H_e;
+    Vector<double>                       cell_vector(9);
+    FullMatrix<double>                   cell_matrix(9, 9);
     std::vector<types::global_dof_index> dof_vector(9);
-    double                                value = 0.;
+    double                               value = 0.;
 
     for (unsigned int e = 0; e < elements.size(); ++e)
       {
@@ -330,8 +362,14 @@ namespace clothsim
 
         // Membrane energy W_e.
         if (gradient != nullptr || hessian != nullptr)
-          value += physics::membrane_energy_gradient_hessian(
-            material, element.rest, x, stress_floor, g_e, hessian != nullptr ? &H_e : nullptr);
+          value +=
+            physics::membrane_energy_gradient_hessian(material,
+                                                      element.rest,
+                                                      x,
+                                                      stress_floor,
+                                                      g_e,
+                                                      hessian != nullptr ? &H_e
+                                                                         : nullptr);
         else
           value += physics::membrane_energy(material, element.rest, x);
 
@@ -340,13 +378,14 @@ namespace clothsim
         for (unsigned int v = 0; v < 3; ++v)
           for (unsigned int d = 0; d < 3; ++d)
             {
-              const double load = terms.load_factor * vertex_mass * parameters.loads.gravity[d];
+              const double load =
+                terms.load_factor * vertex_mass * parameters.loads.gravity[d];
               value -= load * u_e[3 * v + d];
               g_e[3 * v + d] -= load;
             }
 
-        // Quadratic terms w_i/2 rᵀ M r + w_d α/2 sᵀ M s with r = u - û, s = u - u_n (a term
-        // that is off has its centre at u, so r or s vanishes).
+        // Quadratic terms w_i/2 rᵀ M r + w_d α/2 sᵀ M s with r = u - û, s = u - u_n (a
+        // term that is off has its centre at u, so r or s vanishes).
         if (use_inertia)
           gather(*terms.predictor, element.dofs, predictor_e);
         else
@@ -365,11 +404,14 @@ namespace clothsim
               for (unsigned int d = 0; d < 3; ++d)
                 {
                   const unsigned int i = 3 * v + d, j = 3 * w + d;
-                  const double       r_i = u_e[i] - predictor_e[i], r_j = u_e[j] - predictor_e[j];
-                  const double       s_i = u_e[i] - previous_e[i], s_j = u_e[j] - previous_e[j];
-                  value += 0.5 * m_vw *
-                           (terms.inertia_weight * r_i * r_j + damping_mass_weight * s_i * s_j);
-                  g_e[i] += m_vw * (terms.inertia_weight * r_j + damping_mass_weight * s_j);
+                  const double       r_i = u_e[i] - predictor_e[i],
+                               r_j       = u_e[j] - predictor_e[j];
+                  const double s_i = u_e[i] - previous_e[i], s_j = u_e[j] - previous_e[j];
+                  value +=
+                    0.5 * m_vw *
+                    (terms.inertia_weight * r_i * r_j + damping_mass_weight * s_i * s_j);
+                  g_e[i] +=
+                    m_vw * (terms.inertia_weight * r_j + damping_mass_weight * s_j);
                   if (hessian != nullptr)
                     H_e[i][j] += mass_weight * m_vw;
                 }
@@ -416,13 +458,38 @@ namespace clothsim
   }
 
 
-  Energies
-  ClothModel::energies(const VectorType &u, const VectorType &v) const
+  void
+    ClothModel::internal_forces(const VectorType &u, VectorType &forces) const
   {
-    const bool             lumped = parameters.material.lumped_mass;
-    const double           rho    = parameters.material.areal_density;
+    forces = 0.;
+    std::array<double, 9>  u_e;
+    physics::ElementVector g_e;
+    std::vector<double>    values(9);
+    for (const Element &element : elements)
+      {
+        gather(u, element.dofs, u_e);
+        physics::TrianglePositions x = element.reference;
+        for (unsigned int a = 0; a < 3; ++a)
+          for (unsigned int d = 0; d < 3; ++d)
+            x[a][d] += u_e[3 * a + d];
+        physics::membrane_energy_gradient_hessian(
+          material, element.rest, x, 0., g_e, nullptr);
+        std::copy(g_e.begin(), g_e.end(), values.begin());
+        forces.add(std::vector<types::global_dof_index>(element.dofs.begin(),
+                                                        element.dofs.end()),
+                   values);
+      }
+    forces.compress(VectorOperation::add);
+  }
+
+
+  Energies
+    ClothModel::energies(const VectorType &u, const VectorType &v) const
+  {
+    const bool            lumped = parameters.material.lumped_mass;
+    const double          rho    = parameters.material.areal_density;
     std::array<double, 9> u_e, v_e;
-    Energies               local;
+    Energies              local;
     for (const Element &element : elements)
       {
         gather(u, element.dofs, u_e);
@@ -436,10 +503,11 @@ namespace clothsim
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int d = 0; d < 3; ++d)
             {
-              local.potential -= vertex_mass * parameters.loads.gravity[d] * u_e[3 * a + d];
+              local.potential -=
+                vertex_mass * parameters.loads.gravity[d] * u_e[3 * a + d];
               for (unsigned int b = 0; b < 3; ++b)
-                local.kinetic +=
-                  0.5 * mass_entry(lumped, vertex_mass, a, b) * v_e[3 * a + d] * v_e[3 * b + d];
+                local.kinetic += 0.5 * mass_entry(lumped, vertex_mass, a, b) *
+                                 v_e[3 * a + d] * v_e[3 * b + d];
             }
       }
     Energies global;
@@ -451,10 +519,10 @@ namespace clothsim
 
 
   double
-  ClothModel::min_area_ratio(const VectorType &u) const
+    ClothModel::min_area_ratio(const VectorType &u) const
   {
     std::array<double, 9> u_e;
-    double                 smallest = std::numeric_limits<double>::max();
+    double                smallest = std::numeric_limits<double>::max();
     for (const Element &element : elements)
       {
         gather(u, element.dofs, u_e);
@@ -462,22 +530,23 @@ namespace clothsim
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int d = 0; d < 3; ++d)
             x[a][d] += u_e[3 * a + d];
-        const double ratio = physics::membrane_strain_stress(material, element.rest, x).area_ratio;
-        smallest           = std::min(smallest, std::isfinite(ratio) ? ratio : -1.);
+        const double ratio =
+          physics::membrane_strain_stress(material, element.rest, x).area_ratio;
+        smallest = std::min(smallest, std::isfinite(ratio) ? ratio : -1.);
       }
     return Utilities::MPI::min(smallest, communicator);
   }
 
 
   void
-  ClothModel::cell_strain_stress(const VectorType &u,
-                                 Vector<float>    &strain,
-                                 Vector<float>    &stress) const
+    ClothModel::cell_strain_stress(const VectorType &u,
+                                   Vector<double>   &strain,
+                                   Vector<double>   &stress) const
   {
     strain.reinit(triangulation.n_active_cells());
     stress.reinit(triangulation.n_active_cells());
     std::array<double, 9> u_e;
-    unsigned int           e = 0;
+    unsigned int          e = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -487,7 +556,8 @@ namespace clothsim
           for (unsigned int a = 0; a < 3; ++a)
             for (unsigned int d = 0; d < 3; ++d)
               x[a][d] += u_e[3 * a + d];
-          const auto measures = physics::membrane_strain_stress(material, element.rest, x);
+          const auto measures =
+            physics::membrane_strain_stress(material, element.rest, x);
           strain[cell->active_cell_index()] = measures.green_strain_norm;
           stress[cell->active_cell_index()] = measures.stress_norm;
         }
@@ -495,20 +565,21 @@ namespace clothsim
 
 
   std::vector<ProbeLocation>
-  ClothModel::locate_probes(const std::vector<Probe> &probes) const
+    ClothModel::locate_probes(const std::vector<Probe> &probes) const
   {
     std::vector<ProbeLocation> located;
     const unsigned int         rank = Utilities::MPI::this_mpi_process(communicator);
     for (const Probe &probe : probes)
       {
         // Nearest locally owned vertex (its x dof owned here), then the global minimum.
-        double                                  best = std::numeric_limits<double>::max();
-        ProbeLocation                           candidate{probe.name, Point<3>(), {{0, 0, 0}}};
+        double        best = std::numeric_limits<double>::max();
+        ProbeLocation candidate{probe.name, Point<3>(), {{0, 0, 0}}};
         for (const Element &element : elements)
           for (unsigned int v = 0; v < 3; ++v)
             if (locally_owned_dofs.is_element(element.dofs[3 * v]))
               {
-                const double distance = element.reference[v].distance(probe.reference_point);
+                const double distance =
+                  element.reference[v].distance(probe.reference_point);
                 if (distance < best)
                   {
                     best                      = distance;
@@ -518,7 +589,8 @@ namespace clothsim
                   }
               }
         // Ties between ranks go to the lowest rank.
-        const auto all = Utilities::MPI::all_gather(communicator, std::make_pair(best, rank));
+        const auto all =
+          Utilities::MPI::all_gather(communicator, std::make_pair(best, rank));
         const auto winner = std::min_element(all.begin(), all.end())->second;
         located.push_back(Utilities::MPI::broadcast(communicator, candidate, winner));
       }
@@ -527,25 +599,26 @@ namespace clothsim
 
 
   std::vector<double>
-  ClothModel::gather_values(const VectorType                           &u,
-                            const std::vector<types::global_dof_index> &dofs) const
+    ClothModel::gather_values(const VectorType                           &u,
+                              const std::vector<types::global_dof_index> &dofs) const
   {
     std::vector<double> values(dofs.size(), 0.);
     for (unsigned int i = 0; i < dofs.size(); ++i)
       if (locally_owned_dofs.is_element(dofs[i]))
         values[i] = u(dofs[i]);
     std::vector<double> sums(dofs.size(), 0.);
-    MPI_Allreduce(values.data(), sums.data(), values.size(), MPI_DOUBLE, MPI_SUM, communicator);
+    MPI_Allreduce(
+      values.data(), sums.data(), values.size(), MPI_DOUBLE, MPI_SUM, communicator);
     return sums;
   }
 
 
   std::vector<std::vector<bool>>
-  ClothModel::constant_modes() const
+    ClothModel::constant_modes() const
   {
     // DoFTools::extract_constant_modes is not instantiated for <2,3> in deal.II 9.4.
-    std::vector<std::vector<bool>> modes(3,
-                                         std::vector<bool>(locally_owned_dofs.n_elements(), false));
+    std::vector<std::vector<bool>> modes(
+      3, std::vector<bool>(locally_owned_dofs.n_elements(), false));
     for (const Element &element : elements)
       for (unsigned int v = 0; v < 3; ++v)
         for (unsigned int c = 0; c < 3; ++c)
@@ -556,14 +629,14 @@ namespace clothsim
 
 
   double
-  ClothModel::total_mass() const
+    ClothModel::total_mass() const
   {
     return parameters.material.areal_density * reference_area();
   }
 
 
   double
-  ClothModel::reference_area() const
+    ClothModel::reference_area() const
   {
     double area = 0.;
     for (const Element &element : elements)

@@ -1,22 +1,26 @@
 #pragma once
 
-// The discrete cloth: a distributed triangle mesh, the displacement unknowns on it, the pinned
-// vertices, and the incremental potential of one step assembled from the element kernels.
+// The discrete cloth: a distributed triangle mesh, the displacement unknowns on it, the
+// pinned vertices, and the incremental potential of one step assembled from the element
+// kernels.
 //
-// Unknowns: displacement u = x - X of every vertex (FE_SimplexP(1)^3). The finite element is an
-// FESystem whose local dofs are mapped to (vertex, component) once at set-up, so a later
-// director-angle component (FE_SimplexP(2) with its vertex dofs constrained; see BENDING.md)
-// adds entries to that map without changing assembly, constraints or output.
+// Unknowns: displacement u = x - X of every vertex (FE_SimplexP(1)^3). The finite element
+// is an FESystem whose local dofs are mapped to (vertex, component) once at set-up, so a
+// later director-angle component (FE_SimplexP(2) with its vertex dofs constrained; see
+// BENDING.md) adds entries to that map without changing assembly, constraints or output.
 //
-// Incremental potential of a step (Gast & Schroeder 2014; backward Euler when w_i = 1/dt²):
-//   Φ(u) = w_i/2 (u - û)ᵀ M (u - û) + W(u) - λ f_gᵀ u + w_d/2 (u - u_n)ᵀ (α M + β K_n) (u - u_n)
+// Incremental potential of a step (Gast & Schroeder 2014; backward Euler when w_i =
+// 1/dt²):
+//   Φ(u) = w_i/2 (u - û)ᵀ M (u - û) + W(u) - λ f_gᵀ u + w_d/2 (u - u_n)ᵀ (α M + β K_n) (u
+//   - u_n)
 // with M the mass matrix, W the membrane energy, f_g the gravity load, λ the load factor,
-// K_n the projected membrane tangent at the step's start. Its gradient is the residual and its
-// Hessian the tangent; all terms are sums over triangles, so one cell loop assembles them.
+// K_n the projected membrane tangent at the step's start. Its gradient is the residual
+// and its Hessian the tangent; all terms are sums over triangles, so one cell loop
+// assembles them.
 
-#include <deal.II/base/function_parser.h>
 #include <boost/serialization/array.hpp>
 #include <boost/serialization/string.hpp>
+#include <deal.II/base/function_parser.h>
 #include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
@@ -41,12 +45,12 @@ namespace clothsim
   // Coefficients of one step's incremental potential (see the file comment).
   struct StepTerms
   {
-    double            inertia_weight = 0.; // w_i, 1/s²
-    double            damping_weight = 0.; // w_d, 1/s
-    double            load_factor    = 1.; // λ
-    const VectorType *predictor      = nullptr; // û (ghosted); needed if w_i > 0
-    const VectorType *previous       = nullptr; // u_n (ghosted); needed if w_d > 0
-    bool              projected_tangent = true; // Hessian: projected (PSD) or exact
+    double            inertia_weight    = 0.;      // w_i, 1/s²
+    double            damping_weight    = 0.;      // w_d, 1/s
+    double            load_factor       = 1.;      // λ
+    const VectorType *predictor         = nullptr; // û (ghosted); needed if w_i > 0
+    const VectorType *previous          = nullptr; // u_n (ghosted); needed if w_d > 0
+    bool              projected_tangent = true;    // Hessian: projected (PSD) or exact
   };
 
   struct Energies
@@ -59,13 +63,13 @@ namespace clothsim
   // A probe snapped to the nearest mesh vertex.
   struct ProbeLocation
   {
-    std::string                             name;
-    Point<3>                                reference_point; // the vertex, m
+    std::string                            name;
+    Point<3>                               reference_point; // the vertex, m
     std::array<types::global_dof_index, 3> dofs;            // x, y, z displacement dofs
 
     template <class Archive>
     void
-    serialize(Archive &archive, const unsigned int)
+      serialize(Archive &archive, const unsigned int)
     {
       archive &name &reference_point &dofs;
     }
@@ -74,131 +78,157 @@ namespace clothsim
   class ClothModel
   {
   public:
-    // Builds the distributed mesh from `serial_mesh` (the same on every rank), distributes dofs,
-    // resolves pinned groups. Throws InputError (naming `parameter_file`) for unknown groups.
-    ClothModel(const MPI_Comm              communicator,
-               const Parameters           &parameters,
-               const std::string          &parameter_file,
-               const Triangulation<2, 3>  &serial_mesh,
-               const mesh::MeshGroups     &groups);
+    // Builds the distributed mesh from `serial_mesh` (the same on every rank),
+    // distributes dofs, resolves pinned groups. Throws InputError (naming
+    // `parameter_file`) for unknown groups.
+    ClothModel(const MPI_Comm             communicator,
+               const Parameters          &parameters,
+               const std::string         &parameter_file,
+               const Triangulation<2, 3> &serial_mesh,
+               const mesh::MeshGroups    &groups);
 
     const DoFHandler<2, 3> &
-    get_dof_handler() const
+      get_dof_handler() const
     {
       return dof_handler;
     }
     const MappingFE<2, 3> &
-    get_mapping() const
+      get_mapping() const
     {
       return mapping;
     }
     const IndexSet &
-    owned_dofs() const
+      owned_dofs() const
     {
       return locally_owned_dofs;
     }
     const IndexSet &
-    relevant_dofs() const
+      relevant_dofs() const
     {
       return locally_relevant_dofs;
     }
     MPI_Comm
-    get_communicator() const
+      get_communicator() const
     {
       return communicator;
     }
     // Homogeneous constraints on the pinned dofs (Newton updates there are zero).
     const AffineConstraints<double> &
-    get_constraints() const
+      get_constraints() const
     {
       return constraints;
     }
     types::global_dof_index
-    n_dofs() const
+      n_dofs() const
     {
       return dof_handler.n_dofs();
     }
     unsigned int
-    n_vertices() const
+      n_vertices() const
     {
       return dof_handler.n_dofs() / 3;
     }
     unsigned int
-    n_pinned_dofs() const;
+      n_pinned_dofs() const;
 
     // Vectors and matrix with this model's layout.
-    void initialize_owned(VectorType &vector) const;
-    void initialize_ghosted(VectorType &vector) const;
-    void initialize_matrix(MatrixType &matrix) const;
+    void
+      initialize_owned(VectorType &vector) const;
+    void
+      initialize_ghosted(VectorType &vector) const;
+    void
+      initialize_matrix(MatrixType &matrix) const;
 
     // Sets the pinned entries of `u` (owned) to the prescribed displacement at time t.
-    void apply_pinned_displacement(const double time, VectorType &u) const;
+    void
+      apply_pinned_displacement(const double time, VectorType &u) const;
 
-    // Per-cell tangent K_n at the step's start for stiffness-proportional damping (no-op if β=0).
-    void prepare_damping(const VectorType &u_n);
+    // Per-cell tangent K_n at the step's start for stiffness-proportional damping (no-op
+    // if β=0).
+    void
+      prepare_damping(const VectorType &u_n);
 
-    // Φ(u) of the step (returned, summed over ranks); if non-null, its gradient (owned vector,
-    // zero at pinned dofs) and Hessian (with the pinned rows/columns eliminated).
-    double assemble(const VectorType &u,
-                    const StepTerms  &terms,
-                    VectorType       *gradient,
-                    MatrixType       *hessian) const;
+    // Φ(u) of the step (returned, summed over ranks); if non-null, its gradient (owned
+    // vector, zero at pinned dofs) and Hessian (with the pinned rows/columns eliminated).
+    double
+      assemble(const VectorType &u,
+               const StepTerms  &terms,
+               VectorType       *gradient,
+               MatrixType       *hessian) const;
+
+    // Internal (elastic) forces ∇W(u) on every dof, pinned ones included (owned vector):
+    // at pinned dofs these are the reactions the pins exert, with opposite sign.
+    void
+      internal_forces(const VectorType &u, VectorType &forces) const;
 
     // Energies at displacement u and velocity v (ghosted), summed over ranks.
-    Energies energies(const VectorType &u, const VectorType &v) const;
+    Energies
+      energies(const VectorType &u, const VectorType &v) const;
 
     // Smallest current/reference area ratio over all triangles (collapse detection).
-    double min_area_ratio(const VectorType &u) const;
+    double
+      min_area_ratio(const VectorType &u) const;
 
-    // Per locally owned cell (indexed by active_cell_index): Green strain and stress norms.
-    void cell_strain_stress(const VectorType &u,
-                            Vector<float>    &strain,
-                            Vector<float>    &stress) const;
+    // Per locally owned cell (indexed by active_cell_index): Green strain and stress
+    // norms.
+    void
+      cell_strain_stress(const VectorType &u,
+                         Vector<double>   &strain,
+                         Vector<double>   &stress) const;
 
     // Snaps each probe to the nearest vertex (the same on every rank).
-    std::vector<ProbeLocation> locate_probes(const std::vector<Probe> &probes) const;
+    std::vector<ProbeLocation>
+      locate_probes(const std::vector<Probe> &probes) const;
 
     // Values of the given dofs of `u` (ghosted) on every rank.
-    std::vector<double> gather_values(const VectorType                           &u,
-                                      const std::vector<types::global_dof_index> &dofs) const;
+    std::vector<double>
+      gather_values(const VectorType                           &u,
+                    const std::vector<types::global_dof_index> &dofs) const;
 
     // AMG near-null space: one constant mode per displacement component (owned dofs).
-    std::vector<std::vector<bool>> constant_modes() const;
+    std::vector<std::vector<bool>>
+      constant_modes() const;
 
-    double total_mass() const;        // kg
-    double reference_area() const;    // m²
+    double
+      total_mass() const; // kg
+    double
+      reference_area() const; // m²
 
   private:
     // Everything the cell loop needs about one locally owned triangle, precomputed.
     struct Element
     {
       std::array<types::global_dof_index, 9> dofs; // (vertex v, component c) at 3v + c
-      physics::TrianglePositions              reference;
-      physics::MembraneRestData               rest;
+      physics::TrianglePositions             reference;
+      physics::MembraneRestData              rest;
     };
 
-    void build_mesh(const Triangulation<2, 3> &serial_mesh);
-    void setup_dofs();
-    void resolve_pinned(const std::string &parameter_file, const mesh::MeshGroups &groups);
+    void
+      build_mesh(const Triangulation<2, 3> &serial_mesh);
+    void
+      setup_dofs();
+    void
+      resolve_pinned(const std::string &parameter_file, const mesh::MeshGroups &groups);
 
-    void gather(const VectorType                             &vector,
-                const std::array<types::global_dof_index, 9> &dofs,
-                std::array<double, 9>                        &values) const;
+    void
+      gather(const VectorType                             &vector,
+             const std::array<types::global_dof_index, 9> &dofs,
+             std::array<double, 9>                        &values) const;
 
-    MPI_Comm                                       communicator;
-    const Parameters                              &parameters;
+    MPI_Comm                                        communicator;
+    const Parameters                               &parameters;
     parallel::fullydistributed::Triangulation<2, 3> triangulation;
-    FESystem<2, 3>                                 fe;
-    MappingFE<2, 3>                                mapping;
-    DoFHandler<2, 3>                               dof_handler;
-    IndexSet                                       locally_owned_dofs;
-    IndexSet                                       locally_relevant_dofs;
-    AffineConstraints<double>                      constraints;
+    FESystem<2, 3>                                  fe;
+    MappingFE<2, 3>                                 mapping;
+    DoFHandler<2, 3>                                dof_handler;
+    IndexSet                                        locally_owned_dofs;
+    IndexSet                                        locally_relevant_dofs;
+    AffineConstraints<double>                       constraints;
 
     // local dof i of a cell -> (vertex, component), from the FESystem.
     std::vector<std::pair<unsigned int, unsigned int>> local_dof_vertex_component;
 
-    std::vector<Element> elements;
+    std::vector<Element>      elements;
     physics::MembraneMaterial material;
 
     // Pinned dofs (locally relevant): dof, component, reference position of its vertex.
@@ -208,8 +238,8 @@ namespace clothsim
       unsigned int            component;
       Point<3>                reference;
     };
-    std::vector<PinnedDof>               pinned;
-    mutable FunctionParser<3>            pinned_displacement;
+    std::vector<PinnedDof>              pinned;
+    mutable FunctionParser<3>           pinned_displacement;
     std::vector<physics::ElementMatrix> damping_tangents; // per element, if β > 0
   };
 } // namespace clothsim

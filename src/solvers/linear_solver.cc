@@ -5,15 +5,15 @@
 
 namespace clothsim
 {
-  LinearSolver::LinearSolver(const LinearSolverParameters   &parameters,
+  LinearSolver::LinearSolver(const LinearSolverParameters  &parameters,
                              std::vector<std::vector<bool>> constant_modes)
-    : parameters(parameters)
-    , constant_modes(std::move(constant_modes))
+      : parameters(parameters)
+      , constant_modes(std::move(constant_modes))
   {}
 
 
   void
-  LinearSolver::update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix)
+    LinearSolver::update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix)
   {
     if (parameters.method == "direct")
       return;
@@ -28,7 +28,7 @@ namespace clothsim
         data.smoother_sweeps       = parameters.amg_smoother_sweeps;
         data.smoother_type         = "Chebyshev";
         data.coarse_type           = "Amesos-KLU";
-        auto amg                   = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+        auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
         amg->initialize(matrix, data);
         preconditioner = std::move(amg);
       }
@@ -42,12 +42,12 @@ namespace clothsim
 
 
   bool
-  LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
-                      TrilinosWrappers::MPI::Vector        &x,
-                      const TrilinosWrappers::MPI::Vector  &b,
-                      unsigned int                         &iterations) const
+    LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
+                        TrilinosWrappers::MPI::Vector        &x,
+                        const TrilinosWrappers::MPI::Vector  &b,
+                        unsigned int                         &iterations) const
   {
-    x = 0.;
+    x                   = 0.;
     const double b_norm = b.l2_norm();
     if (b_norm == 0.)
       {

@@ -1,7 +1,7 @@
 #pragma once
 
-// Linear solves of the Newton steps: CG or GMRES preconditioned by ML algebraic multigrid or
-// Jacobi, or a direct solve (Amesos KLU), as the parameter file selects.
+// Linear solves of the Newton steps: CG or GMRES preconditioned by ML algebraic multigrid
+// or Jacobi, or a direct solve (Amesos KLU), as the parameter file selects.
 
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -19,22 +19,25 @@ namespace clothsim
   public:
     // constant_modes: one mask per displacement component over the locally owned dofs
     // (DoFTools::extract_constant_modes), the AMG near-null space.
-    LinearSolver(const LinearSolverParameters   &parameters,
+    LinearSolver(const LinearSolverParameters  &parameters,
                  std::vector<std::vector<bool>> constant_modes);
 
     // Builds the preconditioner for `matrix` (call after every new tangent).
-    void update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix);
+    void
+      update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix);
 
-    // Solves A x = b to |b - A x| <= relative_tolerance |b|. Returns false if the Krylov method
-    // did not converge; `iterations` gets the iteration count (1 for the direct solver).
-    bool solve(const TrilinosWrappers::SparseMatrix &matrix,
-               TrilinosWrappers::MPI::Vector        &x,
-               const TrilinosWrappers::MPI::Vector  &b,
-               unsigned int                         &iterations) const;
+    // Solves A x = b to |b - A x| <= relative_tolerance |b|. Returns false if the Krylov
+    // method did not converge; `iterations` gets the iteration count (1 for the direct
+    // solver).
+    bool
+      solve(const TrilinosWrappers::SparseMatrix &matrix,
+            TrilinosWrappers::MPI::Vector        &x,
+            const TrilinosWrappers::MPI::Vector  &b,
+            unsigned int                         &iterations) const;
 
   private:
-    const LinearSolverParameters                      parameters;
-    const std::vector<std::vector<bool>>               constant_modes;
+    const LinearSolverParameters                        parameters;
+    const std::vector<std::vector<bool>>                constant_modes;
     std::unique_ptr<TrilinosWrappers::PreconditionBase> preconditioner;
   };
 } // namespace clothsim

@@ -1,16 +1,17 @@
 #include "solvers/newton_solver.h"
 
+#include "solvers/energy_line_search.h"
+
 #include <NOX.H>
 #include <NOX_Epetra_Group.H>
 #include <NOX_Epetra_Interface_Required.H>
 #include <NOX_Epetra_LinearSystem.H>
 #include <NOX_Epetra_Vector.H>
-#include <NOX_MeritFunction_Generic.H>
+#include <NOX_Solver_LineSearchBased.H>
 #include <NOX_StatusTest_Combo.H>
 #include <NOX_StatusTest_FiniteValue.H>
 #include <NOX_StatusTest_MaxIters.H>
 #include <NOX_StatusTest_NormF.H>
-#include <NOX_Solver_LineSearchBased.H>
 #include <Teuchos_ParameterList.hpp>
 
 #include <algorithm>
@@ -23,19 +24,19 @@ namespace clothsim
     using TrilinosVector = TrilinosWrappers::MPI::Vector;
 
     void
-    copy(const Epetra_Vector &from, TrilinosVector &to)
+      copy(const Epetra_Vector &from, TrilinosVector &to)
     {
       std::copy(from.Values(), from.Values() + from.MyLength(), to.begin());
     }
 
     void
-    copy(const TrilinosVector &from, Epetra_Vector &to)
+      copy(const TrilinosVector &from, Epetra_Vector &to)
     {
       std::copy(from.begin(), from.end(), to.Values());
     }
 
     const Epetra_Vector &
-    epetra(const NOX::Abstract::Vector &vector)
+      epetra(const NOX::Abstract::Vector &vector)
     {
       return dynamic_cast<const NOX::Epetra::Vector &>(vector).getEpetraVector();
     }
@@ -47,9 +48,10 @@ namespace clothsim
       TrilinosWrappers::SparseMatrix &matrix;
       LinearSolver                   &linear_solver;
       TrilinosVector                  u, rhs, solution;
+      TimerOutput                    &timer;
       const std::string               tangent_mode; // adaptive, projected, exact
-      unsigned int                    linear_iterations = 0;
-      unsigned int                    projected_fallbacks = 0;
+      unsigned int                    linear_iterations      = 0;
+      unsigned int                    projected_fallbacks    = 0;
       bool                            preconditioner_current = false;
       bool                            tangent_projected      = false;
       std::string                     failure;
@@ -60,13 +62,13 @@ namespace clothsim
     {
     public:
       explicit Interface(Context &context)
-        : context(context)
+          : context(context)
       {}
 
       bool
-      computeF(const Epetra_Vector &x,
-               Epetra_Vector       &F,
-               const NOX::Epetra::Interface::Required::FillType) override
+        computeF(const Epetra_Vector &x,
+                 Epetra_Vector       &F,
+                 const NOX::Epetra::Interface::Required::FillType) override
       {
         copy(x, context.u);
         context.problem.residual(context.u, context.rhs);
@@ -78,38 +80,41 @@ namespace clothsim
       Context &context;
     };
 
-    // NOX's linear system: the tangent as a TrilinosWrappers matrix, solved by LinearSolver.
+    // NOX's linear system: the tangent as a TrilinosWrappers matrix, solved by
+    // LinearSolver.
     class LinearSystem : public NOX::Epetra::LinearSystem
     {
     public:
       explicit LinearSystem(Context &context)
-        : context(context)
+          : context(context)
       {}
 
       bool
-      applyJacobian(const NOX::Epetra::Vector &input, NOX::Epetra::Vector &result) const override
+        applyJacobian(const NOX::Epetra::Vector &input,
+                      NOX::Epetra::Vector       &result) const override
       {
         return context.matrix.trilinos_matrix().Apply(input.getEpetraVector(),
                                                       result.getEpetraVector()) == 0;
       }
 
       bool
-      applyJacobianTranspose(const NOX::Epetra::Vector &input,
-                             NOX::Epetra::Vector       &result) const override
+        applyJacobianTranspose(const NOX::Epetra::Vector &input,
+                               NOX::Epetra::Vector       &result) const override
       {
         // The tangent is symmetric.
         return applyJacobian(input, result);
       }
 
       bool
-      applyJacobianInverse(Teuchos::ParameterList &,
-                           const NOX::Epetra::Vector &input,
-                           NOX::Epetra::Vector       &result) override
+        applyJacobianInverse(Teuchos::ParameterList &,
+                             const NOX::Epetra::Vector &input,
+                             NOX::Epetra::Vector       &result) override
       {
         copy(input.getEpetraVector(), context.rhs);
         bool ok = solve();
-        // Adaptive tangent: an exact Hessian that the solver cannot handle, or whose step is no
-        // descent direction of the objective (indefinite), is replaced by the projected one.
+        // Adaptive tangent: an exact Hessian that the solver cannot handle, or whose step
+        // is no descent direction of the objective (indefinite), is replaced by the
+        // projected one.
         if (context.tangent_mode == "adaptive" && !context.tangent_projected &&
             (!ok || context.solution * context.rhs <= 0.))
           {
@@ -126,45 +131,49 @@ namespace clothsim
       }
 
       bool
-      solve()
+        solve()
       {
         if (!context.preconditioner_current)
           {
+            TimerOutput::Scope scope(context.timer, "preconditioner setup");
             context.linear_solver.update_preconditioner(context.matrix);
             context.preconditioner_current = true;
           }
-        unsigned int iterations = 0;
-        const bool   ok =
-          context.linear_solver.solve(context.matrix, context.solution, context.rhs, iterations);
+        TimerOutput::Scope scope(context.timer, "linear solve");
+        unsigned int       iterations = 0;
+        const bool         ok         = context.linear_solver.solve(context.matrix,
+                                                    context.solution,
+                                                    context.rhs,
+                                                    iterations);
         context.linear_iterations += iterations;
         if (!ok)
-          context.failure =
-            "linear solver did not converge in " + std::to_string(iterations) + " iterations";
+          context.failure = "linear solver did not converge in " +
+                            std::to_string(iterations) + " iterations";
         return ok;
       }
 
       bool
-      applyRightPreconditioning(bool,
-                                Teuchos::ParameterList &,
-                                const NOX::Epetra::Vector &input,
-                                NOX::Epetra::Vector       &result) const override
+        applyRightPreconditioning(bool,
+                                  Teuchos::ParameterList &,
+                                  const NOX::Epetra::Vector &input,
+                                  NOX::Epetra::Vector       &result) const override
       {
         result = input;
         return true;
       }
 
       Teuchos::RCP<NOX::Epetra::Scaling>
-      getScaling() override
+        getScaling() override
       {
         return Teuchos::null;
       }
 
       void
-      resetScaling(const Teuchos::RCP<NOX::Epetra::Scaling> &) override
+        resetScaling(const Teuchos::RCP<NOX::Epetra::Scaling> &) override
       {}
 
       bool
-      computeJacobian(const NOX::Epetra::Vector &x) override
+        computeJacobian(const NOX::Epetra::Vector &x) override
       {
         copy(x.getEpetraVector(), last_x);
         context.tangent_projected = context.tangent_mode == "projected";
@@ -174,75 +183,76 @@ namespace clothsim
       }
 
       bool
-      createPreconditioner(const NOX::Epetra::Vector &,
-                           Teuchos::ParameterList &,
-                           bool) const override
+        createPreconditioner(const NOX::Epetra::Vector &,
+                             Teuchos::ParameterList &,
+                             bool) const override
       {
         return true;
       }
 
       bool
-      destroyPreconditioner() const override
+        destroyPreconditioner() const override
       {
         return true;
       }
 
       bool
-      recomputePreconditioner(const NOX::Epetra::Vector &, Teuchos::ParameterList &) const override
+        recomputePreconditioner(const NOX::Epetra::Vector &,
+                                Teuchos::ParameterList &) const override
       {
         return true;
       }
 
       PreconditionerReusePolicyType
-      getPreconditionerPolicy(bool) override
+        getPreconditionerPolicy(bool) override
       {
         // The preconditioner is rebuilt in applyJacobianInverse after each new tangent.
         return PRPT_REUSE;
       }
 
       bool
-      isPreconditionerConstructed() const override
+        isPreconditionerConstructed() const override
       {
         return true;
       }
 
       bool
-      hasPreconditioner() const override
+        hasPreconditioner() const override
       {
         return false;
       }
 
       Teuchos::RCP<const Epetra_Operator>
-      getJacobianOperator() const override
+        getJacobianOperator() const override
       {
         return Teuchos::rcp(&context.matrix.trilinos_matrix(), false);
       }
 
       Teuchos::RCP<Epetra_Operator>
-      getJacobianOperator() override
+        getJacobianOperator() override
       {
         return Teuchos::rcp(
           const_cast<Epetra_CrsMatrix *>(&context.matrix.trilinos_matrix()), false);
       }
 
       Teuchos::RCP<const Epetra_Operator>
-      getGeneratedPrecOperator() const override
+        getGeneratedPrecOperator() const override
       {
         return Teuchos::null;
       }
 
       Teuchos::RCP<Epetra_Operator>
-      getGeneratedPrecOperator() override
+        getGeneratedPrecOperator() override
       {
         return Teuchos::null;
       }
 
       void
-      setJacobianOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
+        setJacobianOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
       {}
 
       void
-      setPrecOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
+        setPrecOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
       {}
 
     private:
@@ -250,23 +260,25 @@ namespace clothsim
       TrilinosVector last_x{context.u}; // where the tangent was last computed
     };
 
-    // Converged when a full Newton step (no line-search cut) moved no dof by more than the
-    // tolerance (m): the next correction is then far smaller (quadratic convergence) or at
-    // least smaller (linear). A cut step proves nothing, so it never counts.
+    // Converged when a full Newton step (no line-search cut) moved no dof by more than
+    // the tolerance (m): the next correction is then far smaller (quadratic convergence)
+    // or at least smaller (linear). A cut step proves nothing, so it never counts.
     class SmallFullStep : public NOX::StatusTest::Generic
     {
     public:
       explicit SmallFullStep(const double tolerance)
-        : tolerance(tolerance)
+          : tolerance(tolerance)
       {}
 
       NOX::StatusTest::StatusType
-      checkStatus(const NOX::Solver::Generic &solver, NOX::StatusTest::CheckType) override
+        checkStatus(const NOX::Solver::Generic &solver,
+                    NOX::StatusTest::CheckType) override
       {
         status = NOX::StatusTest::Unconverged;
         if (solver.getNumIterations() == 0)
           return status;
-        const auto *line_search = dynamic_cast<const NOX::Solver::LineSearchBased *>(&solver);
+        const auto *line_search =
+          dynamic_cast<const NOX::Solver::LineSearchBased *>(&solver);
         if (line_search == nullptr || line_search->getStepSize() != 1.)
           return status;
         auto update = solver.getSolutionGroup().getX().clone(NOX::DeepCopy);
@@ -277,13 +289,13 @@ namespace clothsim
       }
 
       NOX::StatusTest::StatusType
-      getStatus() const override
+        getStatus() const override
       {
         return status;
       }
 
       std::ostream &
-      print(std::ostream &stream, int indent = 0) const override
+        print(std::ostream &stream, int indent = 0) const override
       {
         for (int i = 0; i < indent; ++i)
           stream << ' ';
@@ -295,131 +307,83 @@ namespace clothsim
       NOX::StatusTest::StatusType status = NOX::StatusTest::Unevaluated;
     };
 
-    // The line search's merit function: the problem's objective. Its gradient is F, so the
-    // slope along a direction d is F·d.
-    class ObjectiveMerit : public NOX::MeritFunction::Generic
-    {
-    public:
-      explicit ObjectiveMerit(Context &context)
-        : context(context)
-      {}
-
-      double
-      computef(const NOX::Abstract::Group &group) const override
-      {
-        TrilinosVector &u = context.u;
-        copy(epetra(group.getX()), u);
-        const double value = context.problem.objective(u);
-        if (getenv("CLOTHSIM_NOX_DEBUG")) std::cout << "merit " << value << std::endl;
-        return std::isfinite(value) ? value : std::numeric_limits<double>::max();
-      }
-
-      void
-      computeGradient(const NOX::Abstract::Group &group,
-                      NOX::Abstract::Vector      &result) const override
-      {
-        result = group.getF();
-      }
-
-      double
-      computeSlope(const NOX::Abstract::Vector &direction,
-                   const NOX::Abstract::Group  &group) const override
-      {
-        return group.getF().innerProduct(direction);
-      }
-
-      double
-      computeQuadraticModel(const NOX::Abstract::Vector &direction,
-                            const NOX::Abstract::Group  &group) const override
-      {
-        auto Jd = direction.clone(NOX::ShapeCopy);
-        group.applyJacobian(direction, *Jd);
-        return computef(group) + computeSlope(direction, group) +
-               0.5 * direction.innerProduct(*Jd);
-      }
-
-      void
-      computeQuadraticMinimizer(const NOX::Abstract::Group &group,
-                                NOX::Abstract::Vector      &result) const override
-      {
-        // Only the dogleg/trust-region methods ask for this; we use a line search.
-        result = group.getNewton();
-        result.scale(1.);
-      }
-
-      const std::string &
-      name() const override
-      {
-        return merit_name;
-      }
-
-    private:
-      Context          &context;
-      const std::string merit_name = "incremental potential";
-    };
   } // namespace
 
 
   NewtonSolver::NewtonSolver(const NonlinearSolverParameters &nonlinear,
                              const LinearSolverParameters    &linear,
                              std::vector<std::vector<bool>>   constant_modes,
-                             TrilinosWrappers::SparseMatrix  &tangent_matrix)
-    : parameters(nonlinear)
-    , linear_solver(linear, std::move(constant_modes))
-    , tangent_matrix(tangent_matrix)
+                             TrilinosWrappers::SparseMatrix  &tangent_matrix,
+                             TimerOutput                     &timer)
+      : parameters(nonlinear)
+      , linear_solver(linear, std::move(constant_modes))
+      , tangent_matrix(tangent_matrix)
+      , timer(timer)
   {}
 
 
   NewtonResult
-  NewtonSolver::solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u)
+    NewtonSolver::solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u)
   {
-    Context context{
-      problem, tangent_matrix, linear_solver, u, u, u, parameters.tangent, 0, 0, false, false, ""};
+    Context context{problem,
+                    tangent_matrix,
+                    linear_solver,
+                    u,
+                    u,
+                    u,
+                    timer,
+                    parameters.tangent,
+                    0,
+                    0,
+                    false,
+                    false,
+                    ""};
 
     auto interface     = Teuchos::rcp(new Interface(context));
     auto linear_system = Teuchos::rcp(new LinearSystem(context));
-    auto merit         = Teuchos::rcp(new ObjectiveMerit(context));
 
     auto nox_parameters = Teuchos::rcp(new Teuchos::ParameterList);
     nox_parameters->set("Nonlinear Solver", "Line Search Based");
-    nox_parameters->sublist("Printing").set("Output Information", getenv("CLOTHSIM_NOX_DEBUG") ? NOX::Utils::Error + NOX::Utils::OuterIteration + NOX::Utils::InnerIteration: NOX::Utils::Error);
+    nox_parameters->sublist("Printing")
+      .set("Output Information",
+           getenv("CLOTHSIM_NOX_DEBUG")
+             ? NOX::Utils::Error + NOX::Utils::OuterIteration + NOX::Utils::InnerIteration
+             : NOX::Utils::Error);
     nox_parameters->sublist("Direction").set("Method", "Newton");
-    nox_parameters->sublist("Direction").sublist("Newton").set("Rescue Bad Newton Solve", false);
-    Teuchos::ParameterList &line_search = nox_parameters->sublist("Line Search");
+    nox_parameters->sublist("Direction")
+      .sublist("Newton")
+      .set("Rescue Bad Newton Solve", false);
+    Teuchos::ParameterList &line_search_parameters =
+      nox_parameters->sublist("Line Search");
+    auto line_search = Teuchos::rcp(new EnergyLineSearch(
+      [&context](const NOX::Abstract::Vector &x) {
+        copy(epetra(x), context.u);
+        return context.problem.objective(context.u);
+      },
+      /*max_halvings=*/30));
     if (parameters.line_search == "full step")
-      line_search.set("Method", "Full Step");
-    else if (parameters.line_search == "backtrack")
-      {
-        line_search.set("Method", "Backtrack");
-        line_search.sublist("Backtrack").set("Max Iters", 30);
-        line_search.sublist("Backtrack").set("Recovery Step", 0.);
-      }
+      line_search_parameters.set("Method", "Full Step");
     else
       {
-        line_search.set("Method", "Polynomial");
-        Teuchos::ParameterList &polynomial = line_search.sublist("Polynomial");
-        polynomial.set("Sufficient Decrease Condition", "Armijo-Goldstein");
-        polynomial.set("Max Iters", 30);
-        polynomial.set("Minimum Step", 1e-12);
-        polynomial.set("Recovery Step Type", "Constant");
-        polynomial.set("Recovery Step", 0.);
+        line_search_parameters.set("Method", "User Defined");
+        line_search_parameters.set<Teuchos::RCP<NOX::LineSearch::UserDefinedFactory>>(
+          "User Defined Line Search Factory",
+          Teuchos::rcp(new EnergyLineSearchFactory(line_search)));
       }
-    nox_parameters->sublist("Solver Options")
-      .set<Teuchos::RCP<NOX::MeritFunction::Generic>>("User Defined Merit Function", merit);
     nox_parameters->sublist("Solver Options").set("Status Test Check Type", "Complete");
 
-    Epetra_Vector            initial(Copy, u.trilinos_vector(), 0);
+    Epetra_Vector             initial(Copy, u.trilinos_vector(), 0);
     const NOX::Epetra::Vector initial_guess(initial);
-    auto group = Teuchos::rcp(new NOX::Epetra::Group(
+    auto                      group = Teuchos::rcp(new NOX::Epetra::Group(
       nox_parameters->sublist("Printing"), interface, initial_guess, linear_system));
 
-    // Converged when ||F|| < absolute or < relative * ||F(u_0)||; failed on NaN or too many
-    // iterations.
+    // Converged when ||F|| < absolute or < relative * ||F(u_0)||; failed on NaN or too
+    // many iterations.
     group->computeF();
-    const double initial_norm = group->getNormF();
-    const double tolerance =
-      std::max(parameters.absolute_tolerance, parameters.relative_tolerance * initial_norm);
-    auto residual_small = Teuchos::rcp(new NOX::StatusTest::NormF(tolerance));
+    const double initial_norm   = group->getNormF();
+    const double tolerance      = std::max(parameters.absolute_tolerance,
+                                      parameters.relative_tolerance * initial_norm);
+    auto         residual_small = Teuchos::rcp(new NOX::StatusTest::NormF(tolerance));
     auto converged = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
     converged->addStatusTest(residual_small);
     if (parameters.displacement_tolerance > 0.)
@@ -440,8 +404,8 @@ namespace clothsim
         return result;
       }
 
-    auto                            solver = NOX::Solver::buildSolver(group, status, nox_parameters);
-    NOX::StatusTest::StatusType     outcome = NOX::StatusTest::Unconverged;
+    auto solver = NOX::Solver::buildSolver(group, status, nox_parameters);
+    NOX::StatusTest::StatusType outcome = NOX::StatusTest::Unconverged;
     try
       {
         outcome = solver->solve();
@@ -462,12 +426,12 @@ namespace clothsim
     const auto &final_group =
       dynamic_cast<const NOX::Epetra::Group &>(solver->getSolutionGroup());
     copy(epetra(final_group.getX()), u);
-    result.iterations        = solver->getNumIterations();
-    result.linear_iterations = context.linear_iterations;
+    result.iterations          = solver->getNumIterations();
+    result.linear_iterations   = context.linear_iterations;
     result.projected_fallbacks = context.projected_fallbacks;
-    result.residual_norm     = final_group.isF() ? final_group.getNormF() : -1.;
-    result.converged         = outcome == NOX::StatusTest::Converged &&
-                       std::isfinite(result.residual_norm);
+    result.residual_norm       = final_group.isF() ? final_group.getNormF() : -1.;
+    result.converged =
+      outcome == NOX::StatusTest::Converged && std::isfinite(result.residual_norm);
     if (!result.converged)
       {
         if (!context.failure.empty())
@@ -475,10 +439,10 @@ namespace clothsim
         else if (finite->getStatus() == NOX::StatusTest::Failed)
           result.failure = "residual became NaN or infinite";
         else if (max_iterations->getStatus() == NOX::StatusTest::Failed)
-          result.failure =
-            "no convergence in " + std::to_string(parameters.max_iterations) + " iterations";
+          result.failure = "no convergence in " +
+                           std::to_string(parameters.max_iterations) + " iterations";
         else
-          result.failure = "line search failed";
+          result.failure = "line search found no decrease of the incremental potential";
       }
     return result;
   }

@@ -1,12 +1,14 @@
 #pragma once
 
 // Newton's method through Trilinos NOX (line-search based, full Newton direction) on the
-// Epetra objects of deal.II's TrilinosWrappers. A thin adapter: NOX asks for the residual F(u),
-// the tangent J(u) and J⁻¹ F; the line search measures progress by the problem's objective
-// (a user merit function), so each step minimises an incremental potential rather than
-// ||F||² (Gast & Schroeder 2014). NOX's "Rescue Bad Newton Solve" is off: a failed linear solve
-// fails the Newton solve, and the caller cuts the step.
+// Epetra objects of deal.II's TrilinosWrappers. A thin adapter: NOX asks for the residual
+// F(u), the tangent J(u) and J⁻¹ F; the line search measures progress by the problem's
+// objective (a user merit function), so each step minimises an incremental potential
+// rather than
+// ||F||² (Gast & Schroeder 2014). NOX's "Rescue Bad Newton Solve" is off: a failed linear
+// solve fails the Newton solve, and the caller cuts the step.
 
+#include <deal.II/base/timer.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -24,27 +26,31 @@ namespace clothsim
     virtual ~NonlinearProblem() = default;
 
     // The objective whose gradient is the residual (J, summed over ranks).
-    virtual double objective(const TrilinosWrappers::MPI::Vector &u) = 0;
+    virtual double
+      objective(const TrilinosWrappers::MPI::Vector &u) = 0;
 
     // F(u) = ∇objective, zero at constrained dofs.
-    virtual void residual(const TrilinosWrappers::MPI::Vector &u,
-                          TrilinosWrappers::MPI::Vector       &F) = 0;
+    virtual void
+      residual(const TrilinosWrappers::MPI::Vector &u,
+               TrilinosWrappers::MPI::Vector       &F) = 0;
 
-    // J(u) = ∇F, with constrained rows and columns eliminated; `projected`: a positive definite
-    // modification instead of the exact Hessian.
-    virtual void tangent(const TrilinosWrappers::MPI::Vector &u,
-                         TrilinosWrappers::SparseMatrix      &J,
-                         const bool                           projected) = 0;
+    // J(u) = ∇F, with constrained rows and columns eliminated; `projected`: a positive
+    // definite modification instead of the exact Hessian.
+    virtual void
+      tangent(const TrilinosWrappers::MPI::Vector &u,
+              TrilinosWrappers::SparseMatrix      &J,
+              const bool                           projected) = 0;
   };
 
   struct NewtonResult
   {
     bool         converged         = false;
     unsigned int iterations        = 0;
-    unsigned int linear_iterations = 0; // summed over the Newton iterations
+    unsigned int linear_iterations = 0;  // summed over the Newton iterations
     double       residual_norm     = 0.; // ||F|| at the returned iterate, N
-    unsigned int projected_fallbacks = 0; // iterations that fell back to the projected tangent
-    std::string  failure;                // why it failed, if it did
+    unsigned int projected_fallbacks =
+      0;                 // iterations that fell back to the projected tangent
+    std::string failure; // why it failed, if it did
   };
 
   class NewtonSolver
@@ -54,14 +60,18 @@ namespace clothsim
     NewtonSolver(const NonlinearSolverParameters &nonlinear,
                  const LinearSolverParameters    &linear,
                  std::vector<std::vector<bool>>   constant_modes,
-                 TrilinosWrappers::SparseMatrix  &tangent_matrix);
+                 TrilinosWrappers::SparseMatrix  &tangent_matrix,
+                 TimerOutput                     &timer);
 
-    // Solves F(u) = 0 starting from u (which satisfies the constraints); u gets the last iterate.
-    NewtonResult solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u);
+    // Solves F(u) = 0 starting from u (which satisfies the constraints); u gets the last
+    // iterate.
+    NewtonResult
+      solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u);
 
   private:
-    const NonlinearSolverParameters  parameters;
-    LinearSolver                     linear_solver;
-    TrilinosWrappers::SparseMatrix  &tangent_matrix;
+    const NonlinearSolverParameters parameters;
+    LinearSolver                    linear_solver;
+    TrilinosWrappers::SparseMatrix &tangent_matrix;
+    TimerOutput                    &timer;
   };
 } // namespace clothsim

@@ -10,20 +10,21 @@ namespace clothsim
 {
   namespace
   {
-    // Newton's view of one step: Φ, ∇Φ, ∇²Φ from the model, with owned <-> ghosted copies.
+    // Newton's view of one step: Φ, ∇Φ, ∇²Φ from the model, with owned <-> ghosted
+    // copies.
     class StepProblem : public NonlinearProblem
     {
     public:
       StepProblem(const ClothModel &model, const StepTerms &terms, TimerOutput &timer)
-        : model(model)
-        , terms(terms)
-        , timer(timer)
+          : model(model)
+          , terms(terms)
+          , timer(timer)
       {
         model.initialize_ghosted(ghosted);
       }
 
       double
-      objective(const VectorType &u) override
+        objective(const VectorType &u) override
       {
         TimerOutput::Scope scope(timer, "assemble energy");
         ghosted = u;
@@ -31,7 +32,7 @@ namespace clothsim
       }
 
       void
-      residual(const VectorType &u, VectorType &F) override
+        residual(const VectorType &u, VectorType &F) override
       {
         TimerOutput::Scope scope(timer, "assemble residual");
         ghosted = u;
@@ -39,7 +40,7 @@ namespace clothsim
       }
 
       void
-      tangent(const VectorType &u, MatrixType &J, const bool projected) override
+        tangent(const VectorType &u, MatrixType &J, const bool projected) override
       {
         TimerOutput::Scope scope(timer, "assemble tangent");
         ghosted                 = u;
@@ -62,12 +63,16 @@ namespace clothsim
                            OutputWriter       &output,
                            ConditionalOStream &pcout,
                            TimerOutput        &timer)
-    : parameters(parameters)
-    , model(model)
-    , output(output)
-    , pcout(pcout)
-    , timer(timer)
-    , newton(parameters.nonlinear_solver, parameters.linear_solver, model.constant_modes(), tangent)
+      : parameters(parameters)
+      , model(model)
+      , output(output)
+      , pcout(pcout)
+      , timer(timer)
+      , newton(parameters.nonlinear_solver,
+               parameters.linear_solver,
+               model.constant_modes(),
+               tangent,
+               timer)
   {
     model.initialize_matrix(tangent);
     model.initialize_owned(u_n);
@@ -81,7 +86,9 @@ namespace clothsim
 
 
   NewtonResult
-  TimeStepper::solve_step(const double time_new, const double dt, const double load_factor)
+    TimeStepper::solve_step(const double time_new,
+                            const double dt,
+                            const double load_factor)
   {
     const bool dynamic = parameters.time.integrator == Integrator::backward_euler;
     StepTerms  terms;
@@ -112,9 +119,9 @@ namespace clothsim
         if (!(area > 1e-6))
           {
             result.converged = false;
-            result.failure   = area < 0. ? "NaN in the solution" :
-                                           "a triangle collapsed (area ratio " +
-                                             std::to_string(area) + ")";
+            result.failure   = area < 0. ? "NaN in the solution"
+                                         : "a triangle collapsed (area ratio " +
+                                           std::to_string(area) + ")";
           }
       }
     return result;
@@ -122,11 +129,11 @@ namespace clothsim
 
 
   RunSummary
-  TimeStepper::run()
+    TimeStepper::run()
   {
-    const bool         dynamic = parameters.time.integrator == Integrator::backward_euler;
-    const double       end     = dynamic ? parameters.time.end_time : 1.;
-    const double       nominal_step =
+    const bool   dynamic = parameters.time.integrator == Integrator::backward_euler;
+    const double end     = dynamic ? parameters.time.end_time : 1.;
+    const double nominal_step =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
     const double       output_interval = dynamic ? parameters.output.interval : 0.;
     const unsigned int max_halvings    = parameters.time.max_step_halvings;
@@ -138,7 +145,8 @@ namespace clothsim
                       parameters.output.progress,
                       Utilities::MPI::this_mpi_process(model.get_communicator()) == 0);
 
-    // Initial state: at rest in the reference configuration, pins at their t = 0 position.
+    // Initial state: at rest in the reference configuration, pins at their t = 0
+    // position.
     u_n = 0.;
     v_n = 0.;
     model.apply_pinned_displacement(0., u_n);
@@ -148,7 +156,8 @@ namespace clothsim
       TimerOutput::Scope scope(timer, "output");
       output.write_state(0, 0., u_ghosted, v_ghosted);
     }
-    output.write_statistics({0, 0., 0., 0, 0, 0., 0, model.energies(u_ghosted, v_ghosted), 0.});
+    output.write_statistics(
+      {0, 0., 0., 0, 0, 0., 0, model.energies(u_ghosted, v_ghosted), 0.});
     double next_output = output_interval;
 
     double       time = 0.;
@@ -156,33 +165,38 @@ namespace clothsim
     while (time < end - epsilon)
       {
         // One nominal step, in 2^k sub-steps if Newton needs smaller ones.
-        const double target = std::min(time + nominal_step, end);
+        const double target   = std::min(time + nominal_step, end);
         unsigned int halvings = 0;
         while (time < target - epsilon)
           {
-            const double dt = std::min((target - time), nominal_step / std::pow(2., halvings));
+            const double dt =
+              std::min((target - time), nominal_step / std::pow(2., halvings));
             const double time_new = (target - time - dt < epsilon) ? target : time + dt;
             u_n_ghosted           = u_n;
             if (dynamic)
               model.prepare_damping(u_n_ghosted);
 
-            const NewtonResult result = solve_step(time_new, time_new - time, time_new);
+            const NewtonResult result =
+              solve_step(time_new, time_new - time, dynamic ? 1. : time_new);
             summary.newton_iterations += result.iterations;
             summary.linear_iterations += result.linear_iterations;
             if (!result.converged)
               {
                 if (halvings == max_halvings)
                   throw SimulationError(
-                    "Newton failed at t = " + std::to_string(time_new) + " with dt = " +
-                    std::to_string(time_new - time) + " after " + std::to_string(halvings) +
-                    " step halvings (" + result.failure + "); the run stops here, output up "
-                    "to t = " + std::to_string(time) + " is kept");
+                    "Newton failed at t = " + std::to_string(time_new) +
+                    " with dt = " + std::to_string(time_new - time) + " after " +
+                    std::to_string(halvings) + " step halvings (" + result.failure +
+                    "); the run stops here, output up "
+                    "to t = " +
+                    std::to_string(time) + " is kept");
                 ++halvings;
                 ++summary.retries;
                 progress.finish();
                 pcout << "step " << step + 1 << ": Newton failed at t = " << time_new
-                      << " (" << result.failure << "); retrying with dt = "
-                      << nominal_step / std::pow(2., halvings) << std::endl;
+                      << " (" << result.failure
+                      << "); retrying with dt = " << nominal_step / std::pow(2., halvings)
+                      << std::endl;
                 continue;
               }
 

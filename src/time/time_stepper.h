@@ -1,11 +1,13 @@
 #pragma once
 
-// The time loop: predict, solve the step's incremental potential with Newton, accept or cut the
-// step, write output. Backward Euler (Gast & Schroeder 2014's optimisation form):
-//   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} = (u_{n+1} - u_n)/dt.
-// Static mode: the load factor λ goes 1/N, 2/N, ..., 1; each increment minimises W - λ f_gᵀ u.
-// A step whose Newton solve fails (or whose result holds NaN or a collapsed triangle) is retried
-// with half the step, up to 'Maximum step halvings' times, and the log says so.
+// The time loop: predict, solve the step's incremental potential with Newton, accept or
+// cut the step, write output. Backward Euler (Gast & Schroeder 2014's optimisation form):
+//   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} =
+//   (u_{n+1} - u_n)/dt.
+// Static mode: the load factor λ goes 1/N, 2/N, ..., 1; each increment minimises W - λ
+// f_gᵀ u. A step whose Newton solve fails (or whose result holds NaN or a collapsed
+// triangle) is retried with half the step, up to 'Maximum step halvings' times, and the
+// log says so.
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -38,25 +40,27 @@ namespace clothsim
   class TimeStepper
   {
   public:
-    TimeStepper(const Parameters &parameters,
-                ClothModel       &model,
-                OutputWriter     &output,
+    TimeStepper(const Parameters   &parameters,
+                ClothModel         &model,
+                OutputWriter       &output,
                 ConditionalOStream &pcout,
-                TimerOutput      &timer);
+                TimerOutput        &timer);
 
     // Runs the whole simulation from the reference state at rest.
-    RunSummary run();
+    RunSummary
+      run();
 
     // The displacement and velocity at the end (ghosted).
     const VectorType &
-    displacement() const
+      displacement() const
     {
       return u_ghosted;
     }
 
   private:
     // Solves one step of size dt from state n; returns the Newton result, leaves u_new.
-    NewtonResult solve_step(const double time_new, const double dt, const double load_factor);
+    NewtonResult
+      solve_step(const double time_new, const double dt, const double load_factor);
 
     const Parameters   &parameters;
     ClothModel         &model;
@@ -67,7 +71,7 @@ namespace clothsim
     MatrixType   tangent;
     NewtonSolver newton;
 
-    VectorType u_n, v_n, u_new;                      // owned
+    VectorType u_n, v_n, u_new;                                      // owned
     VectorType u_ghosted, v_ghosted, u_n_ghosted, predictor_ghosted; // ghosted
   };
 } // namespace clothsim

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs what clothsim needs on Debian 12 (apt packages; skipped when all are present) and
+# builds it in Release mode in ./build. Usage: scripts/setup.sh   (as root, or with sudo)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(cmake g++ make libdeal.ii-dev trilinos-all-dev libopenmpi-dev openmpi-bin gmsh
+          libgmsh-dev libvtk9-dev numdiff)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j "$(nproc)"

@@ -1,0 +1,48 @@
+#include "scene/scene.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <filesystem>
+
+namespace clothsim
+{
+  namespace
+  {
+    // Mesh path as written in the parameter file, relative to that file's directory.
+    std::string
+      resolve_mesh_file(const ParameterInput &input)
+    {
+      const std::filesystem::path mesh = input.parameters.scene.mesh_file;
+      if (mesh.is_absolute() || input.directory.empty())
+        return mesh.lexically_normal().string();
+      return (std::filesystem::path(input.directory) / mesh).lexically_normal().string();
+    }
+  } // namespace
+
+
+  std::unique_ptr<Scene>
+    load_scene(const std::string              &parameter_file,
+               const std::vector<std::string> &overrides,
+               const MPI_Comm                  communicator)
+  {
+    auto scene       = std::make_unique<Scene>();
+    scene->input     = read_parameters(scene->prm, parameter_file, overrides);
+    scene->mesh_file = resolve_mesh_file(scene->input);
+
+    // Rank 0 first: it may have to generate the .msh from its .geo.
+    const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    if (is_root)
+      scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
+    MPI_Barrier(communicator);
+    if (!is_root)
+      scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
+
+    scene->model  = std::make_unique<ClothModel>(communicator,
+                                                scene->parameters(),
+                                                parameter_file,
+                                                scene->serial_mesh,
+                                                scene->groups);
+    scene->probes = scene->model->locate_probes(scene->parameters().output.probes);
+    return scene;
+  }
+} // namespace clothsim

@@ -1,0 +1,60 @@
+#include "solvers/energy_line_search.h"
+
+#include <NOX_Abstract_Group.H>
+#include <NOX_Abstract_Vector.H>
+#include <NOX_Solver_Generic.H>
+
+#include <cmath>
+#include <limits>
+
+namespace clothsim
+{
+  EnergyLineSearch::EnergyLineSearch(Objective objective, const unsigned int max_halvings)
+      : objective(std::move(objective))
+      , max_halvings(max_halvings)
+  {}
+
+
+  bool
+    EnergyLineSearch::compute(NOX::Abstract::Group        &group,
+                              double                      &step,
+                              const NOX::Abstract::Vector &direction,
+                              const NOX::Solver::Generic  &solver)
+  {
+    constexpr double            sufficient_decrease = 1e-4;
+    const NOX::Abstract::Group &old_group           = solver.getPreviousSolutionGroup();
+    const double                old_value           = objective(old_group.getX());
+    const double                old_norm            = old_group.getNormF();
+    const double                slope = old_group.getF().innerProduct(direction);
+    // The objective's own resolution: changes below this are round-off.
+    const double noise =
+      100. * std::numeric_limits<double>::epsilon() * std::abs(old_value);
+
+    step = 1.;
+    for (unsigned int cut = 0; cut <= max_halvings; ++cut, step *= 0.5)
+      {
+        group.computeX(old_group, direction, step);
+        const double value = objective(group.getX());
+        if (!std::isfinite(value))
+          continue;
+        if (value <= old_value + sufficient_decrease * step * slope)
+          {
+            n_cuts += cut;
+            group.computeF();
+            return true;
+          }
+        // Below the objective's resolution: accept if the residual decreases.
+        if (std::abs(step * slope) < noise)
+          {
+            group.computeF();
+            if (group.getNormF() < old_norm)
+              {
+                n_cuts += cut;
+                return true;
+              }
+          }
+      }
+    n_cuts += max_halvings;
+    return false;
+  }
+} // namespace clothsim

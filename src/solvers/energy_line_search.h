@@ -1,0 +1,59 @@
+#pragma once
+
+// Backtracking line search on an objective whose gradient is the Newton residual F (an
+// incremental potential), for NOX. Armijo condition Φ(x + α d) <= Φ(x) + c α F·d with c =
+// 1e-4, step halving (Nocedal & Wright, "Numerical Optimization", alg. 3.1). Near the
+// solution the decrease α F·d falls below the round-off of Φ itself (|Φ| ε); there the
+// step is judged by the residual norm instead, so Newton's last iterations are not cut by
+// noise. A later contact model can cap α here (continuous collision check) before the
+// search starts.
+
+#include <NOX_LineSearch_Generic.H>
+#include <NOX_LineSearch_UserDefinedFactory.H>
+
+#include <functional>
+
+namespace clothsim
+{
+  class EnergyLineSearch : public NOX::LineSearch::Generic
+  {
+  public:
+    // objective(x): Φ at the group's solution vector x.
+    using Objective = std::function<double(const NOX::Abstract::Vector &)>;
+
+    EnergyLineSearch(Objective objective, const unsigned int max_halvings);
+
+    bool
+      compute(NOX::Abstract::Group        &group,
+              double                      &step,
+              const NOX::Abstract::Vector &direction,
+              const NOX::Solver::Generic  &solver) override;
+
+    // Line-search cuts in the last solve, and whether any step was judged by the
+    // residual.
+    unsigned int n_cuts = 0;
+
+  private:
+    Objective          objective;
+    const unsigned int max_halvings;
+  };
+
+  // NOX builds line searches through a factory ("User Defined Line Search Factory").
+  class EnergyLineSearchFactory : public NOX::LineSearch::UserDefinedFactory
+  {
+  public:
+    explicit EnergyLineSearchFactory(Teuchos::RCP<EnergyLineSearch> line_search)
+        : line_search(line_search)
+    {}
+
+    Teuchos::RCP<NOX::LineSearch::Generic>
+      buildLineSearch(const Teuchos::RCP<NOX::GlobalData> &,
+                      Teuchos::ParameterList &) const override
+    {
+      return line_search;
+    }
+
+  private:
+    Teuchos::RCP<EnergyLineSearch> line_search;
+  };
+} // namespace clothsim

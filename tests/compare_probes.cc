@@ -1,0 +1,56 @@
+// compare_probes A.csv B.csv RELATIVE ABSOLUTE
+// Compares two probes.csv files row by row (same steps, times and probes) and their
+// displacements: |a - b| <= max(ABSOLUTE, RELATIVE * max(|a|, |b|)). Prints the worst
+// deviation.
+
+#include "csv.h"
+
+#include <cmath>
+#include <iostream>
+
+int
+  main(int argc, char **argv)
+{
+  if (argc != 5)
+    {
+      std::cerr << "usage: compare_probes A.csv B.csv RELATIVE ABSOLUTE\n";
+      return 2;
+    }
+  using namespace clothsim::test;
+  const Csv    a = read_csv(argv[1]), b = read_csv(argv[2]);
+  const double relative = std::stod(argv[3]), absolute = std::stod(argv[4]);
+  if (a.header != b.header || a.rows.size() != b.rows.size() || a.rows.empty())
+    {
+      std::cout << "FAILED: different headers or row counts (" << a.rows.size() << " vs "
+                << b.rows.size() << ")\n";
+      return 1;
+    }
+  double worst = 0., worst_relative = 0.;
+  bool   passed = true;
+  for (unsigned int r = 0; r < a.rows.size(); ++r)
+    {
+      if (a.rows[r][a.column("probe")] != b.rows[r][b.column("probe")] ||
+          a.rows[r][a.column("step")] != b.rows[r][b.column("step")] ||
+          std::abs(a.number(r, "time") - b.number(r, "time")) > 1e-12)
+        {
+          std::cout << "FAILED: row " << r + 1 << " is a different step or probe\n";
+          return 1;
+        }
+      for (const char *column : {"X", "Y", "Z", "ux", "uy", "uz"})
+        {
+          const double x = a.number(r, column), y = b.number(r, column);
+          const double deviation = std::abs(x - y);
+          const double scale     = std::max(std::abs(x), std::abs(y));
+          worst                  = std::max(worst, deviation);
+          if (scale > absolute)
+            worst_relative = std::max(worst_relative, deviation / scale);
+          if (deviation > std::max(absolute, relative * scale))
+            passed = false;
+        }
+    }
+  std::cout << a.rows.size() << " rows; largest deviation " << worst
+            << " m, largest relative deviation (values above " << absolute << ") "
+            << worst_relative << "\n"
+            << (passed ? "PASSED" : "FAILED") << std::endl;
+  return passed ? 0 : 1;
+}

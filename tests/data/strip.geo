@@ -1,0 +1,17 @@
+// A 2 m x 0.5 m strip in the plane z = 0, unstructured, for the uniaxial stretch test.
+lc = 0.1;
+Point(1) = {0, 0, 0, lc};
+Point(2) = {2, 0, 0, lc};
+Point(3) = {2, 0.5, 0, lc};
+Point(4) = {0, 0.5, 0, lc};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Point("corner") = {1};
+Physical Curve("left") = {4};
+Physical Curve("right") = {2};
+Physical Surface("cloth") = {1};
+Mesh.MshFileVersion = 4.1;

@@ -1,0 +1,102 @@
+// Uniaxial stretch of a flat strip (tests/scenes/uniaxial_stretch.prm), solved statically
+// with the project's Newton solver on an unstructured mesh. Linear triangles represent
+// the uniform state exactly, so the discrete solution must match the St. Venant–Kirchhoff
+// closed form:
+//   stretch λ = 1.1, E_xx = (λ² - 1)/2, plane stress with S_yy = 0 gives E_yy = -ν E_xx
+//   and S_xx = k E_xx; the pulling force on the right edge is F = W λ S_xx (first
+//   Piola-Kirchhoff times the reference width W), and the width shrinks to W sqrt(1 + 2
+//   E_yy).
+// Asserts the force and the contraction within 1e-8 relative, and a uniform strain field.
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
+
+#include "io/output_writer.h"
+#include "scene/scene.h"
+#include "time/time_stepper.h"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <set>
+
+using namespace clothsim;
+
+int
+  main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm                   communicator = MPI_COMM_WORLD;
+  ConditionalOStream               pcout(std::cout,
+                           Utilities::MPI::this_mpi_process(communicator) == 0);
+
+  const std::string directory =
+    std::filesystem::temp_directory_path() / "clothsim-uniaxial";
+  std::filesystem::create_directories(directory);
+  auto scene =
+    load_scene(std::string(CLOTHSIM_SOURCE_DIR) + "/tests/scenes/uniaxial_stretch.prm",
+               {},
+               communicator);
+  ClothModel  &model = *scene->model;
+  TimerOutput  timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
+  OutputWriter output(directory, model, scene->probes, false);
+  TimeStepper  stepper(scene->parameters(), model, output, pcout, timer);
+  const RunSummary  summary = stepper.run();
+  const VectorType &u       = stepper.displacement();
+
+  const double length = 2., width = 0.5, k = 100., nu = 0.3, stretch = 1.1;
+  const double E_xx = 0.5 * (stretch * stretch - 1.), E_yy = -nu * E_xx;
+  const double expected_force       = width * stretch * k * E_xx;
+  const double expected_contraction = width * (std::sqrt(1. + 2. * E_yy) - 1.);
+
+  // Reaction: the internal forces' x components summed over the right edge's (owned)
+  // vertices.
+  VectorType forces;
+  model.initialize_owned(forces);
+  model.internal_forces(u, forces);
+  double                            force = 0.;
+  std::set<types::global_dof_index> right_edge;
+  for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+    if (cell->is_locally_owned())
+      for (unsigned int v = 0; v < 3; ++v)
+        if (std::abs(cell->vertex(v)[0] - length) < 1e-12 &&
+            model.owned_dofs().is_element(cell->vertex_dof_index(v, 0)))
+          right_edge.insert(cell->vertex_dof_index(v, 0));
+  for (const auto dof : right_edge)
+    force += forces[dof];
+  force = Utilities::MPI::sum(force, communicator);
+
+  // Contraction of the far corner (2, 0.5): uy.
+  const auto   far_corner  = scene->probes.at(0);
+  const double contraction = model.gather_values(u, {far_corner.dofs[1]})[0];
+
+  // Uniform strain: every triangle's Green strain norm equals sqrt(E_xx² + E_yy²).
+  Vector<double> strain, stress;
+  model.cell_strain_stress(u, strain, stress);
+  const double expected_strain = std::sqrt(E_xx * E_xx + E_yy * E_yy);
+  double       worst_strain    = 0.;
+  for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+    if (cell->is_locally_owned())
+      worst_strain =
+        std::max(worst_strain,
+                 std::abs(strain[cell->active_cell_index()] - expected_strain) /
+                   expected_strain);
+  worst_strain = Utilities::MPI::max(worst_strain, communicator);
+
+  const double force_error = std::abs(force - expected_force) / expected_force;
+  const double contraction_error =
+    std::abs(contraction - expected_contraction) / std::abs(expected_contraction);
+  pcout << "load steps " << summary.steps << ", Newton iterations "
+        << summary.newton_iterations << "\nforce " << force << " N (closed form "
+        << expected_force << ", relative error " << force_error << ")\ncontraction "
+        << contraction << " m (closed form " << expected_contraction
+        << ", relative error " << contraction_error
+        << ")\nworst relative deviation of a triangle's strain norm from the closed form "
+        << worst_strain << std::endl;
+
+  const bool passed =
+    force_error < 1e-8 && contraction_error < 1e-8 && worst_strain < 1e-8;
+  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
+  return passed ? 0 : 1;
+}
