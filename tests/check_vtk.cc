@@ -71,7 +71,7 @@ int
           displacement == nullptr || velocity == nullptr ||
           displacement->GetNumberOfComponents() != 3 ||
           velocity->GetNumberOfComponents() != 3 ||
-          grid->GetCellData()->GetArray("green_strain") == nullptr ||
+          grid->GetPointData()->GetArray("green_strain") == nullptr ||
           (n_cells >= 0 && (grid->GetNumberOfCells() != n_cells ||
                             grid->GetNumberOfPoints() != n_points)))
         {

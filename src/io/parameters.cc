@@ -32,19 +32,67 @@ namespace clothsim
       return text;
     }
 
-    // The entry name in deal.II's message "... for the entry named <NAME> ...", if any.
-    std::string
-      entry_in(const std::string &message)
+    // deal.II's parse errors ("Line <N> of file <F>: ...") as (entry, one-line text),
+    // with the entry given as Section/Name where the message names one.
+    std::pair<std::string, std::string>
+      describe_parse_error(const std::string &message, const std::string &section)
     {
-      std::smatch match;
-      if (std::regex_search(message, match, std::regex("entry named <([^>]*)>")))
-        return match[1];
-      if (std::regex_search(message, match, std::regex("No entry with name <([^>]*)>")))
-        return match[1];
-      return "";
+      const std::string prefix = section.empty() ? "" : section + "/";
+      std::smatch       match;
+      if (std::regex_search(message,
+                            match,
+                            std::regex(
+                              "Line <([0-9]+)> of file <[^>]*>: The entry value (.*) "
+                              "for the entry named (.*) does not match the given "
+                              "pattern:? (.*)$")))
+        return {prefix + std::string(match[3]),
+                "value " + std::string(match[2]) + " does not match " +
+                  std::string(match[4]) + " (line " + std::string(match[1]) + ")"};
+      if (std::regex_search(message,
+                            match,
+                            std::regex(
+                              "Line <([0-9]+)> of file <[^>]*>: No entry with name "
+                              "<([^>]*)> was declared")))
+        return {prefix + std::string(match[2]),
+                "no such entry (line " + std::string(match[1]) +
+                  "; clothsim --print-parameters lists them all)"};
+      if (std::regex_search(message,
+                            match,
+                            std::regex("Line <([0-9]+)> of file <[^>]*>: (.*)$")))
+        return {"line " + std::string(match[1]), std::string(match[2])};
+      return {"", message};
     }
 
     const char *const solver_methods = "cg|gmres|direct";
+
+    // The subsection path (a/b) enclosing the line named in deal.II's "Line <N> of file"
+    // message.
+    std::string
+      current_section(const std::string &file, const std::string &message)
+    {
+      std::smatch match;
+      if (!std::regex_search(message, match, std::regex("Line <([0-9]+)>")))
+        return "";
+      const unsigned int       line_number = std::stoi(match[1]);
+      std::ifstream            in(file);
+      std::vector<std::string> sections;
+      std::string              line;
+      for (unsigned int n = 1; n < line_number && std::getline(in, line); ++n)
+        {
+          std::smatch words;
+          if (std::regex_search(line,
+                                words,
+                                std::regex("^\\s*subsection\\s+(.*?)\\s*(#.*)?$")))
+            sections.push_back(words[1]);
+          else if (std::regex_search(line, std::regex("^\\s*end\\s*(#.*)?$")) &&
+                   !sections.empty())
+            sections.pop_back();
+        }
+      std::string path;
+      for (const std::string &section : sections)
+        path += (path.empty() ? "" : "/") + section;
+      return path;
+    }
   } // namespace
 
 
@@ -506,7 +554,9 @@ namespace clothsim
     catch (const std::exception &e)
       {
         const std::string message = one_line(e);
-        throw InputError(file, entry_in(message), message);
+        const auto [entry, text] =
+          describe_parse_error(message, current_section(file, message));
+        throw InputError(file, entry, text);
       }
 
     // --set "Section/Sub/Name=value"
@@ -547,7 +597,8 @@ namespace clothsim
     catch (const std::exception &e)
       {
         const std::string message = one_line(e);
-        throw InputError(file, entry_in(message), message);
+        const auto [entry, text]  = describe_parse_error(message, "");
+        throw InputError(file, entry, text);
       }
 
     // Checks that patterns cannot express.
