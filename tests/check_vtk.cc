@@ -21,7 +21,7 @@
 #include <regex>
 
 int
-  main(int argc, char **argv)
+main(int argc, char **argv)
 {
   if (argc != 2)
     {

@@ -9,7 +9,7 @@
 #include <iostream>
 
 int
-  main(int argc, char **argv)
+main(int argc, char **argv)
 {
   if (argc != 5)
     {

@@ -18,7 +18,7 @@ namespace clothsim::test
     std::vector<std::vector<std::string>> rows;
 
     unsigned int
-      column(const std::string &name) const
+    column(const std::string &name) const
     {
       for (unsigned int c = 0; c < header.size(); ++c)
         if (header[c] == name)
@@ -27,14 +27,14 @@ namespace clothsim::test
     }
 
     double
-      number(const unsigned int row, const std::string &name) const
+    number(const unsigned int row, const std::string &name) const
     {
       return std::stod(rows.at(row).at(column(name)));
     }
   };
 
   inline std::vector<std::string>
-    split(const std::string &line)
+  split(const std::string &line)
   {
     std::vector<std::string> fields;
     std::stringstream        stream(line);
@@ -45,7 +45,7 @@ namespace clothsim::test
   }
 
   inline Csv
-    read_csv(const std::string &file)
+  read_csv(const std::string &file)
   {
     std::ifstream in(file);
     if (!in)

@@ -23,7 +23,7 @@ using namespace clothsim;
 namespace
 {
   int
-    run(const std::vector<std::string> &arguments)
+  run(const std::vector<std::string> &arguments)
   {
     std::vector<const char *> argv = {"clothsim"};
     for (const std::string &argument : arguments)
@@ -33,7 +33,7 @@ namespace
 } // namespace
 
 int
-  main(int argc, char **argv)
+main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const std::string                        source = CLOTHSIM_SOURCE_DIR;

@@ -17,7 +17,7 @@ using namespace clothsim::physics;
 namespace
 {
   double
-    norm(const ElementVector &v)
+  norm(const ElementVector &v)
   {
     double sum = 0.;
     for (const double x : v)
@@ -27,7 +27,7 @@ namespace
 } // namespace
 
 int
-  main()
+main()
 {
   std::mt19937                           generator(42);
   std::uniform_real_distribution<double> uniform(-1., 1.);

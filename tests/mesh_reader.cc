@@ -30,7 +30,7 @@ namespace
   unsigned int n_failures = 0;
 
   void
-    check(const bool ok, const std::string &what)
+  check(const bool ok, const std::string &what)
   {
     ++n_checks;
     if (!ok)
@@ -40,7 +40,7 @@ namespace
 
   template <typename T>
   void
-    check_equal(const std::string &what, const T &value, const T &expected)
+  check_equal(const std::string &what, const T &value, const T &expected)
   {
     std::ostringstream text;
     text << what << " = " << value << " (expected " << expected << ")";
@@ -48,10 +48,10 @@ namespace
   }
 
   void
-    check_near(const std::string &what,
-               const double       value,
-               const double       expected,
-               const double       tolerance)
+  check_near(const std::string &what,
+             const double       value,
+             const double       expected,
+             const double       tolerance)
   {
     std::ostringstream text;
     text.precision(16);
@@ -62,7 +62,7 @@ namespace
 
 
   double
-    total_area(const Triangulation<2, 3> &triangulation)
+  total_area(const Triangulation<2, 3> &triangulation)
   {
     double area = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -75,7 +75,7 @@ namespace
 
   // Number of active boundary faces per boundary id.
   std::map<types::boundary_id, unsigned int>
-    count_boundary_faces(const Triangulation<2, 3> &triangulation)
+  count_boundary_faces(const Triangulation<2, 3> &triangulation)
   {
     std::map<types::boundary_id, unsigned int> counts;
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -88,7 +88,7 @@ namespace
 
   // Number of active cells per material id.
   std::map<types::material_id, unsigned int>
-    count_material_ids(const Triangulation<2, 3> &triangulation)
+  count_material_ids(const Triangulation<2, 3> &triangulation)
   {
     std::map<types::material_id, unsigned int> counts;
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -100,12 +100,12 @@ namespace
   // True if the center of every active cell with material id `id` lies in the box
   // [x_min, x_max] x [y_min, y_max].
   bool
-    cells_in_box(const Triangulation<2, 3> &triangulation,
-                 const types::material_id   id,
-                 const double               x_min,
-                 const double               x_max,
-                 const double               y_min,
-                 const double               y_max)
+  cells_in_box(const Triangulation<2, 3> &triangulation,
+               const types::material_id   id,
+               const double               x_min,
+               const double               x_max,
+               const double               y_min,
+               const double               y_max)
   {
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->material_id() == id)
@@ -121,7 +121,7 @@ namespace
 
   // Total length of the active boundary faces with boundary id `id`.
   double
-    boundary_length(const Triangulation<2, 3> &triangulation, const types::boundary_id id)
+  boundary_length(const Triangulation<2, 3> &triangulation, const types::boundary_id id)
   {
     double length = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
@@ -135,10 +135,10 @@ namespace
   // True if every active boundary face with boundary id `id` lies on the plane
   // x[axis]=value.
   bool
-    boundary_faces_on(const Triangulation<2, 3> &triangulation,
-                      const types::boundary_id   id,
-                      const unsigned int         axis,
-                      const double               value)
+  boundary_faces_on(const Triangulation<2, 3> &triangulation,
+                    const types::boundary_id   id,
+                    const unsigned int         axis,
+                    const double               value)
   {
     for (const auto &cell : triangulation.active_cell_iterators())
       for (const unsigned int f : cell->face_indices())
@@ -151,7 +151,7 @@ namespace
 
 
   bool
-    contains(const std::string &text, const std::string &word)
+  contains(const std::string &text, const std::string &word)
   {
     return text.find(word) != std::string::npos;
   }
@@ -159,7 +159,7 @@ namespace
 
   // read_gmsh(file) must throw an InputError naming the file and containing all `words`.
   void
-    check_rejected(const std::string &file, const std::vector<std::string> &words)
+  check_rejected(const std::string &file, const std::vector<std::string> &words)
   {
     const std::string name = std::filesystem::path(file).filename().string();
     try
@@ -180,7 +180,7 @@ namespace
 
 
   void
-    test_square(const std::string &data)
+  test_square(const std::string &data)
   {
     std::cout << "square.msh (gmsh 2.2, 3x3 nodes + 1 unused node, 8 triangles):"
               << std::endl;
@@ -270,7 +270,7 @@ namespace
 
 
   void
-    test_bad_meshes(const std::string &data)
+  test_bad_meshes(const std::string &data)
   {
     std::cout << "bad meshes:" << std::endl;
     check_rejected(data + "/quad.msh", {"Quadrilateral", "element 7"});
@@ -286,7 +286,7 @@ namespace
 
 
   void
-    test_generation_from_geo()
+  test_generation_from_geo()
   {
     namespace fs = std::filesystem;
     std::cout << "generation from a .geo:" << std::endl;
@@ -365,7 +365,7 @@ namespace
 
 
 int
-  main(int argc, char **argv)
+main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   if (argc != 2)

@@ -24,7 +24,7 @@
 using namespace clothsim;
 
 int
-  main(int argc, char **argv)
+main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   const MPI_Comm                   communicator = MPI_COMM_WORLD;

@@ -22,7 +22,7 @@ namespace clothsim
     namespace fs = std::filesystem;
 
     std::string
-      default_parameter_file()
+    default_parameter_file()
     {
       // Next to the executable's source tree first, then the working directory.
       const fs::path in_source = fs::path(CLOTHSIM_SOURCE_DIR) / "params" / "default.prm";
@@ -32,7 +32,7 @@ namespace clothsim
     }
 
     std::string
-      output_directory(const CommandLine &command_line, const ParameterInput &input)
+    output_directory(const CommandLine &command_line, const ParameterInput &input)
     {
       if (!command_line.output_directory.empty())
         return command_line.output_directory;
@@ -44,7 +44,7 @@ namespace clothsim
 
     // Creates the directory and removes frames of an earlier run in it.
     void
-      prepare_output_directory(const std::string &directory)
+    prepare_output_directory(const std::string &directory)
     {
       fs::create_directories(directory);
       for (const auto &entry : fs::directory_iterator(directory))
@@ -56,9 +56,9 @@ namespace clothsim
     }
 
     void
-      write_input_copies(const std::string      &directory,
-                         const ParameterInput   &input,
-                         const ParameterHandler &prm)
+    write_input_copies(const std::string      &directory,
+                       const ParameterInput   &input,
+                       const ParameterHandler &prm)
     {
       fs::copy_file(input.file,
                     directory + "/original.prm",
@@ -77,7 +77,7 @@ namespace clothsim
 
 
   int
-    run_application(const int argc, const char *const *argv)
+  run_application(const int argc, const char *const *argv)
   {
     const MPI_Comm     communicator = MPI_COMM_WORLD;
     const bool         is_root      = Utilities::MPI::this_mpi_process(communicator) == 0;

@@ -7,5 +7,5 @@ namespace clothsim
 {
   // Returns the process exit code: 0 success, 1 bad input, 2 the simulation failed.
   int
-    run_application(const int argc, const char *const *argv);
+  run_application(const int argc, const char *const *argv);
 } // namespace clothsim

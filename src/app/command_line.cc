@@ -5,7 +5,7 @@
 namespace clothsim
 {
   CommandLine
-    parse_command_line(const int argc, const char *const *argv)
+  parse_command_line(const int argc, const char *const *argv)
   {
     CommandLine command_line;
     for (int i = 1; i < argc; ++i)
@@ -36,7 +36,7 @@ namespace clothsim
 
 
   std::string
-    usage()
+  usage()
   {
     return "clothsim: finite-element cloth and thin-shell simulator\n"
            "\n"

@@ -27,8 +27,8 @@ namespace clothsim
   // Throws InputError("<command line>", argument, message) on unknown or incomplete
   // options.
   CommandLine
-    parse_command_line(const int argc, const char *const *argv);
+  parse_command_line(const int argc, const char *const *argv);
 
   std::string
-    usage();
+  usage();
 } // namespace clothsim

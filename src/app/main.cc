@@ -14,7 +14,7 @@
 #include "app/application.h"
 
 int
-  main(int argc, char **argv)
+main(int argc, char **argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   return clothsim::run_application(argc, argv);

@@ -16,10 +16,10 @@ namespace clothsim
     InputError(const std::string &file,
                const std::string &entry,
                const std::string &message)
-        : std::runtime_error(compose(file, entry, message))
-        , file(file)
-        , entry(entry)
-        , message(message)
+      : std::runtime_error(compose(file, entry, message))
+      , file(file)
+      , entry(entry)
+      , message(message)
     {}
 
     const std::string file;
@@ -28,9 +28,7 @@ namespace clothsim
 
   private:
     static std::string
-      compose(const std::string &file,
-              const std::string &entry,
-              const std::string &message)
+    compose(const std::string &file, const std::string &entry, const std::string &message)
     {
       std::string text = file.empty() ? std::string("<command line>") : file;
       if (!entry.empty())

@@ -16,11 +16,11 @@ namespace clothsim
                              const ClothModel                 &model,
                              const std::vector<ProbeLocation> &probes,
                              const bool                        write_vtk)
-      : directory(directory)
-      , model(model)
-      , probes(probes)
-      , write_vtk(write_vtk)
-      , is_root(Utilities::MPI::this_mpi_process(model.get_communicator()) == 0)
+    : directory(directory)
+    , model(model)
+    , probes(probes)
+    , write_vtk(write_vtk)
+    , is_root(Utilities::MPI::this_mpi_process(model.get_communicator()) == 0)
   {
     if (is_root)
       {
@@ -37,10 +37,10 @@ namespace clothsim
 
 
   void
-    OutputWriter::write_state(const unsigned int step,
-                              const double       time,
-                              const VectorType  &u,
-                              const VectorType  &v)
+  OutputWriter::write_state(const unsigned int step,
+                            const double       time,
+                            const VectorType  &u,
+                            const VectorType  &v)
   {
     if (write_vtk)
       write_vtk_frame(time, u, v);
@@ -65,7 +65,7 @@ namespace clothsim
 
 
   void
-    OutputWriter::write_statistics(const StepStatistics &row)
+  OutputWriter::write_statistics(const StepStatistics &row)
   {
     if (!is_root)
       return;
@@ -81,9 +81,9 @@ namespace clothsim
 
 
   void
-    OutputWriter::write_vtk_frame(const double      time,
-                                  const VectorType &u,
-                                  const VectorType &v)
+  OutputWriter::write_vtk_frame(const double      time,
+                                const VectorType &u,
+                                const VectorType &v)
   {
     const MPI_Comm     communicator = model.get_communicator();
     const unsigned int n_ranks      = Utilities::MPI::n_mpi_processes(communicator);

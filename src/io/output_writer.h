@@ -41,17 +41,17 @@ namespace clothsim
 
     // VTK frame (if enabled) and probe rows for the state (u, v), both ghosted.
     void
-      write_state(const unsigned int step,
-                  const double       time,
-                  const VectorType  &u,
-                  const VectorType  &v);
+    write_state(const unsigned int step,
+                const double       time,
+                const VectorType  &u,
+                const VectorType  &v);
 
     void
-      write_statistics(const StepStatistics &row);
+    write_statistics(const StepStatistics &row);
 
   private:
     void
-      write_vtk_frame(const double time, const VectorType &u, const VectorType &v);
+    write_vtk_frame(const double time, const VectorType &u, const VectorType &v);
 
     const std::string                           directory;
     const ClothModel                           &model;

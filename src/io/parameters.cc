@@ -16,7 +16,7 @@ namespace clothsim
   {
     // A deal.II exception's "Additional information" as one line.
     std::string
-      one_line(const std::exception &exception)
+    one_line(const std::exception &exception)
     {
       std::string       text   = exception.what();
       const std::string marker = "Additional information:";
@@ -35,7 +35,7 @@ namespace clothsim
     // deal.II's parse errors ("Line <N> of file <F>: ...") as (entry, one-line text),
     // with the entry given as Section/Name where the message names one.
     std::pair<std::string, std::string>
-      describe_parse_error(const std::string &message, const std::string &section)
+    describe_parse_error(const std::string &message, const std::string &section)
     {
       const std::string prefix = section.empty() ? "" : section + "/";
       std::smatch       match;
@@ -68,7 +68,7 @@ namespace clothsim
     // The subsection path (a/b) enclosing the line named in deal.II's "Line <N> of file"
     // message.
     std::string
-      current_section(const std::string &file, const std::string &message)
+    current_section(const std::string &file, const std::string &message)
     {
       std::smatch match;
       if (!std::regex_search(message, match, std::regex("Line <([0-9]+)>")))
@@ -97,7 +97,7 @@ namespace clothsim
 
 
   void
-    SceneParameters::declare_parameters(ParameterHandler &prm)
+  SceneParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.declare_entry(
       "Scene name",
@@ -122,7 +122,7 @@ namespace clothsim
   }
 
   void
-    SceneParameters::parse_parameters(ParameterHandler &prm)
+  SceneParameters::parse_parameters(ParameterHandler &prm)
   {
     name = prm.get("Scene name");
     prm.enter_subsection("Mesh");
@@ -133,7 +133,7 @@ namespace clothsim
 
 
   void
-    MaterialParameters::declare_parameters(ParameterHandler &prm)
+  MaterialParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Material");
     prm.declare_entry(
@@ -176,7 +176,7 @@ namespace clothsim
   }
 
   void
-    MaterialParameters::parse_parameters(ParameterHandler &prm)
+  MaterialParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Material");
     if (prm.get("Stiffness given as") == "E*h")
@@ -191,7 +191,7 @@ namespace clothsim
 
 
   void
-    DampingParameters::declare_parameters(ParameterHandler &prm)
+  DampingParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Damping");
     prm.declare_entry(
@@ -211,7 +211,7 @@ namespace clothsim
   }
 
   void
-    DampingParameters::parse_parameters(ParameterHandler &prm)
+  DampingParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Damping");
     mass_proportional      = prm.get_double("Mass proportional");
@@ -221,7 +221,7 @@ namespace clothsim
 
 
   void
-    LoadParameters::declare_parameters(ParameterHandler &prm)
+  LoadParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Loads");
     prm.declare_entry("Gravity",
@@ -232,7 +232,7 @@ namespace clothsim
   }
 
   void
-    LoadParameters::parse_parameters(ParameterHandler &prm)
+  LoadParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Loads");
     const auto values =
@@ -244,7 +244,7 @@ namespace clothsim
 
 
   void
-    ConstraintParameters::declare_parameters(ParameterHandler &prm)
+  ConstraintParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Constraints");
     prm.declare_entry(
@@ -266,7 +266,7 @@ namespace clothsim
   }
 
   void
-    ConstraintParameters::parse_parameters(ParameterHandler &prm)
+  ConstraintParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Constraints");
     pinned_groups.clear();
@@ -295,7 +295,7 @@ namespace clothsim
 
 
   void
-    TimeParameters::declare_parameters(ParameterHandler &prm)
+  TimeParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time");
     prm.declare_entry(
@@ -324,7 +324,7 @@ namespace clothsim
   }
 
   void
-    TimeParameters::parse_parameters(ParameterHandler &prm)
+  TimeParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time");
     integrator        = prm.get("Integrator") == "static" ? Integrator::static_load_steps
@@ -338,7 +338,7 @@ namespace clothsim
 
 
   void
-    NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
     prm.declare_entry("Maximum iterations",
@@ -383,7 +383,7 @@ namespace clothsim
   }
 
   void
-    NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
     max_iterations         = prm.get_integer("Maximum iterations");
@@ -397,7 +397,7 @@ namespace clothsim
 
 
   void
-    LinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  LinearSolverParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
     prm.declare_entry(
@@ -429,11 +429,18 @@ namespace clothsim
                       "1e-4",
                       Patterns::Double(0., 1.),
                       "ML aggregation threshold (strength of connection).");
+    prm.declare_entry(
+      "AMG reuse aggregates",
+      "true",
+      Patterns::Bool(),
+      "Build the multigrid aggregates from the first tangent of the run and "
+      "only recompute the hierarchy's operators for later tangents (same "
+      "sparsity); false rebuilds everything for every tangent.");
     prm.leave_subsection();
   }
 
   void
-    LinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  LinearSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Linear solver");
     method                    = prm.get("Method");
@@ -442,12 +449,13 @@ namespace clothsim
     max_iterations            = prm.get_integer("Maximum iterations");
     amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
     amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
+    amg_reuse_aggregates      = prm.get_bool("AMG reuse aggregates");
     prm.leave_subsection();
   }
 
 
   void
-    OutputParameters::declare_parameters(ParameterHandler &prm)
+  OutputParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
     prm.declare_entry(
@@ -481,7 +489,7 @@ namespace clothsim
   }
 
   void
-    OutputParameters::parse_parameters(ParameterHandler &prm)
+  OutputParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
     interval  = prm.get_double("Output interval");
@@ -500,7 +508,7 @@ namespace clothsim
 
 
   void
-    Parameters::declare_parameters(ParameterHandler &prm)
+  Parameters::declare_parameters(ParameterHandler &prm)
   {
     SceneParameters::declare_parameters(prm);
     MaterialParameters::declare_parameters(prm);
@@ -514,7 +522,7 @@ namespace clothsim
   }
 
   void
-    Parameters::parse_parameters(ParameterHandler &prm)
+  Parameters::parse_parameters(ParameterHandler &prm)
   {
     scene.parse_parameters(prm);
     material.parse_parameters(prm);
@@ -529,9 +537,9 @@ namespace clothsim
 
 
   ParameterInput
-    read_parameters(ParameterHandler               &prm,
-                    const std::string              &file,
-                    const std::vector<std::string> &overrides)
+  read_parameters(ParameterHandler               &prm,
+                  const std::string              &file,
+                  const std::vector<std::string> &overrides)
   {
     Parameters::declare_parameters(prm);
 

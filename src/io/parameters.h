@@ -22,9 +22,9 @@ namespace clothsim
     unsigned int global_refinements; // uniform refinements of the mesh as read
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct MaterialParameters
@@ -35,9 +35,9 @@ namespace clothsim
     bool   lumped_mass;
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct DampingParameters
@@ -46,9 +46,9 @@ namespace clothsim
     double stiffness_proportional; // β, s:   damping force -β K v
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct LoadParameters
@@ -56,9 +56,9 @@ namespace clothsim
     Tensor<1, 3> gravity; // m/s²
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   // A mesh group whose vertices follow the pinned displacement in the given components.
@@ -74,9 +74,9 @@ namespace clothsim
     std::string pinned_displacement; // FunctionParser expression, x;y;z in m of (x,y,z,t)
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   enum class Integrator
@@ -94,9 +94,9 @@ namespace clothsim
     unsigned int load_steps; // static mode
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct NonlinearSolverParameters
@@ -109,9 +109,9 @@ namespace clothsim
     double       displacement_tolerance; // m
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct LinearSolverParameters
@@ -122,11 +122,12 @@ namespace clothsim
     unsigned int max_iterations;
     unsigned int amg_smoother_sweeps;
     double       amg_aggregation_threshold;
+    bool         amg_reuse_aggregates;
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct Probe
@@ -143,9 +144,9 @@ namespace clothsim
     std::string        progress; // "auto", "on", "off"
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   struct Parameters
@@ -161,9 +162,9 @@ namespace clothsim
     OutputParameters          output;
 
     static void
-      declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm);
     void
-      parse_parameters(ParameterHandler &prm);
+    parse_parameters(ParameterHandler &prm);
   };
 
   // The parameter file as read, with command-line overrides applied.
@@ -178,7 +179,7 @@ namespace clothsim
   // Declares everything in `prm`, reads `file` (.prm or .json), applies `overrides`,
   // parses. Throws InputError naming the file (or "--set") and the entry on any problem.
   ParameterInput
-    read_parameters(ParameterHandler               &prm,
-                    const std::string              &file,
-                    const std::vector<std::string> &overrides);
+  read_parameters(ParameterHandler               &prm,
+                  const std::string              &file,
+                  const std::vector<std::string> &overrides);
 } // namespace clothsim

@@ -9,10 +9,10 @@
 namespace clothsim
 {
   Progress::Progress(std::ostream &out, const std::string &mode, const bool active)
-      : out(out)
-      , enabled(active && mode != "off")
-      , terminal(isatty(fileno(stdout)) != 0)
-      , start(std::chrono::steady_clock::now())
+    : out(out)
+    , enabled(active && mode != "off")
+    , terminal(isatty(fileno(stdout)) != 0)
+    , start(std::chrono::steady_clock::now())
   {
     if (mode == "auto" && !terminal)
       enabled = false;
@@ -20,7 +20,7 @@ namespace clothsim
 
 
   void
-    Progress::update(const double fraction, const std::string &state)
+  Progress::update(const double fraction, const std::string &state)
   {
     if (!enabled)
       return;
@@ -45,7 +45,7 @@ namespace clothsim
 
 
   void
-    Progress::finish()
+  Progress::finish()
   {
     if (line_open)
       out << '\n' << std::flush;

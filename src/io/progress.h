@@ -18,9 +18,9 @@ namespace clothsim
 
     // fraction in [0, 1] of the run done, with a short description of the state.
     void
-      update(const double fraction, const std::string &state);
+    update(const double fraction, const std::string &state);
     void
-      finish();
+    finish();
 
   private:
     std::ostream                         &out;

@@ -22,7 +22,7 @@
 namespace clothsim::mesh
 {
   std::vector<std::string>
-    MeshGroups::all_names() const
+  MeshGroups::all_names() const
   {
     std::set<std::string> names;
     for (const auto &group : line_groups)
@@ -119,7 +119,7 @@ namespace clothsim::mesh
 
       GmshSession(const GmshSession &) = delete;
       GmshSession &
-        operator=(const GmshSession &) = delete;
+      operator=(const GmshSession &) = delete;
     };
 
 
@@ -127,7 +127,7 @@ namespace clothsim::mesh
     // std::exception in later versions) into an InputError with `context` in front.
     template <typename Function>
     void
-      call_gmsh(const std::string &msh_file, const std::string &context, Function &&f)
+    call_gmsh(const std::string &msh_file, const std::string &context, Function &&f)
     {
       try
         {
@@ -154,7 +154,7 @@ namespace clothsim::mesh
 
     // gmsh's name of an element type, e.g. "Quadrilateral 4".
     std::string
-      element_type_name(const int type)
+    element_type_name(const int type)
     {
       std::string         name;
       int                 dim, order, n_nodes, n_primary_nodes;
@@ -173,7 +173,7 @@ namespace clothsim::mesh
 
 
     std::string
-      physical_name(const int dim, const int tag)
+    physical_name(const int dim, const int tag)
     {
       std::string name;
       gmsh::model::getPhysicalName(dim, tag, name);
@@ -206,11 +206,11 @@ namespace clothsim::mesh
 
       GmshLog(const GmshLog &) = delete;
       GmshLog &
-        operator=(const GmshLog &) = delete;
+      operator=(const GmshLog &) = delete;
 
       // Throws an InputError with the first error logged since construction, if any.
       void
-        throw_first_error(const std::string &msh_file, const std::string &context) const
+      throw_first_error(const std::string &msh_file, const std::string &context) const
       {
         const std::string        prefix = "Error: ";
         std::vector<std::string> log;
@@ -228,7 +228,7 @@ namespace clothsim::mesh
     // Writes the .msh for `geo_file` next to it: to a temporary name first, then renamed,
     // so that a concurrent reader (another MPI rank) never sees a half-written file.
     void
-      generate_msh(const std::string &msh_file, const std::filesystem::path &geo_file)
+    generate_msh(const std::string &msh_file, const std::filesystem::path &geo_file)
     {
       const std::string context = "generating it from " + geo_file.string() + " failed";
       std::filesystem::path partial_file = msh_file;
@@ -267,7 +267,7 @@ namespace clothsim::mesh
 
     // Reads the mesh of the current gmsh model.
     RawMesh
-      read_model(const std::string &msh_file)
+    read_model(const std::string &msh_file)
     {
       RawMesh raw;
 
@@ -383,7 +383,7 @@ namespace clothsim::mesh
 
 
     RawMesh
-      load_with_gmsh(const std::string &msh_file)
+    load_with_gmsh(const std::string &msh_file)
     {
       namespace fs = std::filesystem;
 
@@ -414,7 +414,7 @@ namespace clothsim::mesh
 
 
     std::string
-      edge_text(const std::size_t node_0, const std::size_t node_1)
+    edge_text(const std::size_t node_0, const std::size_t node_1)
     {
       return "(nodes " + std::to_string(node_0) + "-" + std::to_string(node_1) + ")";
     }
@@ -422,7 +422,7 @@ namespace clothsim::mesh
 
     // An edge as the sorted pair of its vertex indices.
     std::pair<unsigned int, unsigned int>
-      edge_key(const unsigned int a, const unsigned int b)
+    edge_key(const unsigned int a, const unsigned int b)
     {
       return a < b ? std::make_pair(a, b) : std::make_pair(b, a);
     }
@@ -430,7 +430,7 @@ namespace clothsim::mesh
 
 
   MeshGroups
-    read_gmsh(const std::string &msh_file, Triangulation<2, 3> &triangulation)
+  read_gmsh(const std::string &msh_file, Triangulation<2, 3> &triangulation)
   {
     AssertThrow(triangulation.n_levels() == 0,
                 ExcMessage("read_gmsh() needs an empty triangulation"));

@@ -35,7 +35,7 @@ namespace clothsim::mesh
 
     // Names of all groups of any dimension (for error messages listing what exists).
     std::vector<std::string>
-      all_names() const;
+    all_names() const;
   };
 
   // Reads `msh_file` (gmsh format 2.2 or 4.x, ASCII or binary) into `triangulation`
@@ -45,5 +45,5 @@ namespace clothsim::mesh
   // oriented surface, no triangle in two surface groups. Throws InputError (naming the
   // file and the offending entity) on any failure.
   MeshGroups
-    read_gmsh(const std::string &msh_file, Triangulation<2, 3> &triangulation);
+  read_gmsh(const std::string &msh_file, Triangulation<2, 3> &triangulation);
 } // namespace clothsim::mesh

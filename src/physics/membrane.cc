@@ -15,7 +15,7 @@ namespace clothsim::physics
     };
 
     EdgeBasis
-      edge_basis(const TrianglePositions &x)
+    edge_basis(const TrianglePositions &x)
     {
       EdgeBasis basis;
       basis.a[0] = x[1] - x[0];
@@ -34,7 +34,7 @@ namespace clothsim::physics
     };
 
     Coefficients
-      coefficients(const MembraneMaterial &material)
+    coefficients(const MembraneMaterial &material)
     {
       const double nu = material.poisson_ratio;
       const double k  = material.stretch_stiffness;
@@ -53,9 +53,9 @@ namespace clothsim::physics
     };
 
     StrainState
-      strain_state(const Coefficients     &c,
-                   const MembraneRestData &rest,
-                   const Tensor<2, 2>     &metric)
+    strain_state(const Coefficients     &c,
+                 const MembraneRestData &rest,
+                 const Tensor<2, 2>     &metric)
     {
       const Tensor<2, 2> &Q = rest.inverse_metric;
       StrainState         s;
@@ -71,7 +71,7 @@ namespace clothsim::physics
 
     // A symmetric 2x2 tensor with its eigenvalues clamped below at `floor` (<= 0).
     Tensor<2, 2>
-      clamp_below(const Tensor<2, 2> &S, const double floor)
+    clamp_below(const Tensor<2, 2> &S, const double floor)
     {
       const double mean      = 0.5 * (S[0][0] + S[1][1]);
       const double half_diff = 0.5 * (S[0][0] - S[1][1]);
@@ -95,7 +95,7 @@ namespace clothsim::physics
 
 
   MembraneRestData
-    membrane_rest_data(const TrianglePositions &reference)
+  membrane_rest_data(const TrianglePositions &reference)
   {
     const EdgeBasis  basis = edge_basis(reference);
     const double     det   = determinant(basis.metric);
@@ -109,9 +109,9 @@ namespace clothsim::physics
 
 
   double
-    membrane_energy(const MembraneMaterial  &material,
-                    const MembraneRestData  &rest,
-                    const TrianglePositions &current)
+  membrane_energy(const MembraneMaterial  &material,
+                  const MembraneRestData  &rest,
+                  const TrianglePositions &current)
   {
     const EdgeBasis   basis = edge_basis(current);
     const StrainState s     = strain_state(coefficients(material), rest, basis.metric);
@@ -120,12 +120,12 @@ namespace clothsim::physics
 
 
   double
-    membrane_energy_gradient_hessian(const MembraneMaterial  &material,
-                                     const MembraneRestData  &rest,
-                                     const TrianglePositions &current,
-                                     const double             stress_floor,
-                                     ElementVector           &gradient,
-                                     ElementMatrix           *hessian)
+  membrane_energy_gradient_hessian(const MembraneMaterial  &material,
+                                   const MembraneRestData  &rest,
+                                   const TrianglePositions &current,
+                                   const double             stress_floor,
+                                   ElementVector           &gradient,
+                                   ElementMatrix           *hessian)
   {
     const Coefficients  c     = coefficients(material);
     const Tensor<2, 2> &Q     = rest.inverse_metric;
@@ -190,9 +190,9 @@ namespace clothsim::physics
 
 
   MembraneStrainStress
-    membrane_strain_stress(const MembraneMaterial  &material,
-                           const MembraneRestData  &rest,
-                           const TrianglePositions &current)
+  membrane_strain_stress(const MembraneMaterial  &material,
+                         const MembraneRestData  &rest,
+                         const TrianglePositions &current)
   {
     const EdgeBasis   basis = edge_basis(current);
     const StrainState s     = strain_state(coefficients(material), rest, basis.metric);

@@ -59,25 +59,25 @@ namespace clothsim::physics
 
   // Rest data from the reference positions. Returns area 0 for a degenerate triangle.
   MembraneRestData
-    membrane_rest_data(const TrianglePositions &reference);
+  membrane_rest_data(const TrianglePositions &reference);
 
   // Energy W (J) of one triangle.
   double
-    membrane_energy(const MembraneMaterial  &material,
-                    const MembraneRestData  &rest,
-                    const TrianglePositions &current);
+  membrane_energy(const MembraneMaterial  &material,
+                  const MembraneRestData  &rest,
+                  const TrianglePositions &current);
 
   // Energy, gradient dW/dx (N, ordered x0.x, x0.y, x0.z, x1.x, ...) and Hessian d²W/dx²
   // (N/m). `hessian` may be null when only the gradient is needed. The Hessian's
   // geometric part uses S with eigenvalues clamped below at -stress_floor (N/m; infinity:
   // exact Hessian).
   double
-    membrane_energy_gradient_hessian(const MembraneMaterial  &material,
-                                     const MembraneRestData  &rest,
-                                     const TrianglePositions &current,
-                                     const double             stress_floor,
-                                     ElementVector           &gradient,
-                                     ElementMatrix           *hessian);
+  membrane_energy_gradient_hessian(const MembraneMaterial  &material,
+                                   const MembraneRestData  &rest,
+                                   const TrianglePositions &current,
+                                   const double             stress_floor,
+                                   ElementVector           &gradient,
+                                   ElementMatrix           *hessian);
 
   // Strain and stress measures of one triangle for output.
   struct MembraneStrainStress
@@ -88,7 +88,7 @@ namespace clothsim::physics
   };
 
   MembraneStrainStress
-    membrane_strain_stress(const MembraneMaterial  &material,
-                           const MembraneRestData  &rest,
-                           const TrianglePositions &current);
+  membrane_strain_stress(const MembraneMaterial  &material,
+                         const MembraneRestData  &rest,
+                         const TrianglePositions &current);
 } // namespace clothsim::physics

@@ -21,12 +21,12 @@ namespace clothsim
                          const std::string         &parameter_file,
                          const Triangulation<2, 3> &serial_mesh,
                          const mesh::MeshGroups    &groups)
-      : communicator(communicator)
-      , parameters(parameters)
-      , triangulation(communicator)
-      , fe(FE_SimplexP<2, 3>(1), 3)
-      , mapping(FE_SimplexP<2, 3>(1))
-      , pinned_displacement(3)
+    : communicator(communicator)
+    , parameters(parameters)
+    , triangulation(communicator)
+    , fe(FE_SimplexP<2, 3>(1), 3)
+    , mapping(FE_SimplexP<2, 3>(1))
+    , pinned_displacement(3)
   {
     material.stretch_stiffness = parameters.material.stretch_stiffness;
     material.poisson_ratio     = parameters.material.poisson_ratio;
@@ -37,7 +37,7 @@ namespace clothsim
 
 
   void
-    ClothModel::build_mesh(const Triangulation<2, 3> &serial_mesh)
+  ClothModel::build_mesh(const Triangulation<2, 3> &serial_mesh)
   {
     // Every rank holds the same coarse mesh; refine it, partition it with METIS
     // (deterministic), and keep only this rank's part plus a ghost layer.
@@ -55,7 +55,7 @@ namespace clothsim
 
 
   void
-    ClothModel::setup_dofs()
+  ClothModel::setup_dofs()
   {
     dof_handler.reinit(triangulation);
     dof_handler.distribute_dofs(fe);
@@ -91,8 +91,8 @@ namespace clothsim
 
 
   void
-    ClothModel::resolve_pinned(const std::string      &parameter_file,
-                               const mesh::MeshGroups &groups)
+  ClothModel::resolve_pinned(const std::string      &parameter_file,
+                             const mesh::MeshGroups &groups)
   {
     // Each pinned group as a vertex predicate, with the components it pins.
     struct GroupPin
@@ -208,7 +208,7 @@ namespace clothsim
 
 
   unsigned int
-    ClothModel::n_pinned_dofs() const
+  ClothModel::n_pinned_dofs() const
   {
     unsigned int n_owned = 0;
     for (const PinnedDof &pin : pinned)
@@ -219,21 +219,21 @@ namespace clothsim
 
 
   void
-    ClothModel::initialize_owned(VectorType &vector) const
+  ClothModel::initialize_owned(VectorType &vector) const
   {
     vector.reinit(locally_owned_dofs, communicator);
   }
 
 
   void
-    ClothModel::initialize_ghosted(VectorType &vector) const
+  ClothModel::initialize_ghosted(VectorType &vector) const
   {
     vector.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
   }
 
 
   void
-    ClothModel::initialize_matrix(MatrixType &matrix) const
+  ClothModel::initialize_matrix(MatrixType &matrix) const
   {
     TrilinosWrappers::SparsityPattern sparsity(locally_owned_dofs,
                                                locally_owned_dofs,
@@ -246,7 +246,7 @@ namespace clothsim
 
 
   void
-    ClothModel::apply_pinned_displacement(const double time, VectorType &u) const
+  ClothModel::apply_pinned_displacement(const double time, VectorType &u) const
   {
     pinned_displacement.set_time(time);
     for (const PinnedDof &pin : pinned)
@@ -257,9 +257,9 @@ namespace clothsim
 
 
   void
-    ClothModel::gather(const VectorType                             &vector,
-                       const std::array<types::global_dof_index, 9> &dofs,
-                       std::array<double, 9>                        &values) const
+  ClothModel::gather(const VectorType                             &vector,
+                     const std::array<types::global_dof_index, 9> &dofs,
+                     std::array<double, 9>                        &values) const
   {
     for (unsigned int i = 0; i < 9; ++i)
       values[i] = vector(dofs[i]);
@@ -271,10 +271,10 @@ namespace clothsim
     // Element mass matrix per component: lumped ρ|T|/3 δ_ab, or consistent ρ|T|/12 (1 +
     // δ_ab).
     inline double
-      mass_entry(const bool         lumped,
-                 const double       vertex_mass,
-                 const unsigned int a,
-                 const unsigned int b)
+    mass_entry(const bool         lumped,
+               const double       vertex_mass,
+               const unsigned int a,
+               const unsigned int b)
     {
       if (lumped)
         return a == b ? vertex_mass : 0.;
@@ -284,7 +284,7 @@ namespace clothsim
 
 
   void
-    ClothModel::prepare_damping(const VectorType &u_n)
+  ClothModel::prepare_damping(const VectorType &u_n)
   {
     const double beta = parameters.damping.stiffness_proportional;
     if (beta == 0.)
@@ -314,10 +314,10 @@ namespace clothsim
 
 
   double
-    ClothModel::assemble(const VectorType &u,
-                         const StepTerms  &terms,
-                         VectorType       *gradient,
-                         MatrixType       *hessian) const
+  ClothModel::assemble(const VectorType &u,
+                       const StepTerms  &terms,
+                       VectorType       *gradient,
+                       MatrixType       *hessian) const
   {
     const bool   lumped = parameters.material.lumped_mass;
     const double rho    = parameters.material.areal_density;
@@ -459,7 +459,7 @@ namespace clothsim
 
 
   void
-    ClothModel::internal_forces(const VectorType &u, VectorType &forces) const
+  ClothModel::internal_forces(const VectorType &u, VectorType &forces) const
   {
     forces = 0.;
     std::array<double, 9>  u_e;
@@ -484,7 +484,7 @@ namespace clothsim
 
 
   Energies
-    ClothModel::energies(const VectorType &u, const VectorType &v) const
+  ClothModel::energies(const VectorType &u, const VectorType &v) const
   {
     const bool            lumped = parameters.material.lumped_mass;
     const double          rho    = parameters.material.areal_density;
@@ -519,7 +519,7 @@ namespace clothsim
 
 
   double
-    ClothModel::min_area_ratio(const VectorType &u) const
+  ClothModel::min_area_ratio(const VectorType &u) const
   {
     std::array<double, 9> u_e;
     double                smallest = std::numeric_limits<double>::max();
@@ -539,9 +539,9 @@ namespace clothsim
 
 
   void
-    ClothModel::cell_strain_stress(const VectorType &u,
-                                   Vector<double>   &strain,
-                                   Vector<double>   &stress) const
+  ClothModel::cell_strain_stress(const VectorType &u,
+                                 Vector<double>   &strain,
+                                 Vector<double>   &stress) const
   {
     strain.reinit(triangulation.n_active_cells());
     stress.reinit(triangulation.n_active_cells());
@@ -565,7 +565,7 @@ namespace clothsim
 
 
   std::vector<ProbeLocation>
-    ClothModel::locate_probes(const std::vector<Probe> &probes) const
+  ClothModel::locate_probes(const std::vector<Probe> &probes) const
   {
     std::vector<ProbeLocation> located;
     const unsigned int         rank = Utilities::MPI::this_mpi_process(communicator);
@@ -599,8 +599,8 @@ namespace clothsim
 
 
   std::vector<double>
-    ClothModel::gather_values(const VectorType                           &u,
-                              const std::vector<types::global_dof_index> &dofs) const
+  ClothModel::gather_values(const VectorType                           &u,
+                            const std::vector<types::global_dof_index> &dofs) const
   {
     std::vector<double> values(dofs.size(), 0.);
     for (unsigned int i = 0; i < dofs.size(); ++i)
@@ -613,30 +613,31 @@ namespace clothsim
   }
 
 
-  std::vector<std::vector<bool>>
-    ClothModel::constant_modes() const
+  std::vector<std::vector<double>>
+  ClothModel::near_null_space() const
   {
-    // DoFTools::extract_constant_modes is not instantiated for <2,3> in deal.II 9.4.
-    std::vector<std::vector<bool>> modes(
-      3, std::vector<bool>(locally_owned_dofs.n_elements(), false));
+    // The three translations. (The three rotations of a rigid-body null space made ML's
+    // CG diverge on the default scene; see the notes of the foundation issue.)
+    const unsigned int               n_owned = locally_owned_dofs.n_elements();
+    std::vector<std::vector<double>> modes(3, std::vector<double>(n_owned, 0.));
     for (const Element &element : elements)
       for (unsigned int v = 0; v < 3; ++v)
         for (unsigned int c = 0; c < 3; ++c)
           if (locally_owned_dofs.is_element(element.dofs[3 * v + c]))
-            modes[c][locally_owned_dofs.index_within_set(element.dofs[3 * v + c])] = true;
+            modes[c][locally_owned_dofs.index_within_set(element.dofs[3 * v + c])] = 1.;
     return modes;
   }
 
 
   double
-    ClothModel::total_mass() const
+  ClothModel::total_mass() const
   {
     return parameters.material.areal_density * reference_area();
   }
 
 
   double
-    ClothModel::reference_area() const
+  ClothModel::reference_area() const
   {
     double area = 0.;
     for (const Element &element : elements)

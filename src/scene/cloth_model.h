@@ -69,7 +69,7 @@ namespace clothsim
 
     template <class Archive>
     void
-      serialize(Archive &archive, const unsigned int)
+    serialize(Archive &archive, const unsigned int)
     {
       archive &name &reference_point &dofs;
     }
@@ -88,111 +88,112 @@ namespace clothsim
                const mesh::MeshGroups    &groups);
 
     const DoFHandler<2, 3> &
-      get_dof_handler() const
+    get_dof_handler() const
     {
       return dof_handler;
     }
     const MappingFE<2, 3> &
-      get_mapping() const
+    get_mapping() const
     {
       return mapping;
     }
     const IndexSet &
-      owned_dofs() const
+    owned_dofs() const
     {
       return locally_owned_dofs;
     }
     const IndexSet &
-      relevant_dofs() const
+    relevant_dofs() const
     {
       return locally_relevant_dofs;
     }
     MPI_Comm
-      get_communicator() const
+    get_communicator() const
     {
       return communicator;
     }
     // Homogeneous constraints on the pinned dofs (Newton updates there are zero).
     const AffineConstraints<double> &
-      get_constraints() const
+    get_constraints() const
     {
       return constraints;
     }
     types::global_dof_index
-      n_dofs() const
+    n_dofs() const
     {
       return dof_handler.n_dofs();
     }
     unsigned int
-      n_vertices() const
+    n_vertices() const
     {
       return dof_handler.n_dofs() / 3;
     }
     unsigned int
-      n_pinned_dofs() const;
+    n_pinned_dofs() const;
 
     // Vectors and matrix with this model's layout.
     void
-      initialize_owned(VectorType &vector) const;
+    initialize_owned(VectorType &vector) const;
     void
-      initialize_ghosted(VectorType &vector) const;
+    initialize_ghosted(VectorType &vector) const;
     void
-      initialize_matrix(MatrixType &matrix) const;
+    initialize_matrix(MatrixType &matrix) const;
 
     // Sets the pinned entries of `u` (owned) to the prescribed displacement at time t.
     void
-      apply_pinned_displacement(const double time, VectorType &u) const;
+    apply_pinned_displacement(const double time, VectorType &u) const;
 
     // Per-cell tangent K_n at the step's start for stiffness-proportional damping (no-op
     // if β=0).
     void
-      prepare_damping(const VectorType &u_n);
+    prepare_damping(const VectorType &u_n);
 
     // Φ(u) of the step (returned, summed over ranks); if non-null, its gradient (owned
     // vector, zero at pinned dofs) and Hessian (with the pinned rows/columns eliminated).
     double
-      assemble(const VectorType &u,
-               const StepTerms  &terms,
-               VectorType       *gradient,
-               MatrixType       *hessian) const;
+    assemble(const VectorType &u,
+             const StepTerms  &terms,
+             VectorType       *gradient,
+             MatrixType       *hessian) const;
 
     // Internal (elastic) forces ∇W(u) on every dof, pinned ones included (owned vector):
     // at pinned dofs these are the reactions the pins exert, with opposite sign.
     void
-      internal_forces(const VectorType &u, VectorType &forces) const;
+    internal_forces(const VectorType &u, VectorType &forces) const;
 
     // Energies at displacement u and velocity v (ghosted), summed over ranks.
     Energies
-      energies(const VectorType &u, const VectorType &v) const;
+    energies(const VectorType &u, const VectorType &v) const;
 
     // Smallest current/reference area ratio over all triangles (collapse detection).
     double
-      min_area_ratio(const VectorType &u) const;
+    min_area_ratio(const VectorType &u) const;
 
     // Per locally owned cell (indexed by active_cell_index): Green strain and stress
     // norms.
     void
-      cell_strain_stress(const VectorType &u,
-                         Vector<double>   &strain,
-                         Vector<double>   &stress) const;
+    cell_strain_stress(const VectorType &u,
+                       Vector<double>   &strain,
+                       Vector<double>   &stress) const;
 
     // Snaps each probe to the nearest vertex (the same on every rank).
     std::vector<ProbeLocation>
-      locate_probes(const std::vector<Probe> &probes) const;
+    locate_probes(const std::vector<Probe> &probes) const;
 
     // Values of the given dofs of `u` (ghosted) on every rank.
     std::vector<double>
-      gather_values(const VectorType                           &u,
-                    const std::vector<types::global_dof_index> &dofs) const;
+    gather_values(const VectorType                           &u,
+                  const std::vector<types::global_dof_index> &dofs) const;
 
-    // AMG near-null space: one constant mode per displacement component (owned dofs).
-    std::vector<std::vector<bool>>
-      constant_modes() const;
+    // AMG near-null space on the locally owned dofs: one constant (translation) mode per
+    // displacement component.
+    std::vector<std::vector<double>>
+    near_null_space() const;
 
     double
-      total_mass() const; // kg
+    total_mass() const; // kg
     double
-      reference_area() const; // m²
+    reference_area() const; // m²
 
   private:
     // Everything the cell loop needs about one locally owned triangle, precomputed.
@@ -204,16 +205,16 @@ namespace clothsim
     };
 
     void
-      build_mesh(const Triangulation<2, 3> &serial_mesh);
+    build_mesh(const Triangulation<2, 3> &serial_mesh);
     void
-      setup_dofs();
+    setup_dofs();
     void
-      resolve_pinned(const std::string &parameter_file, const mesh::MeshGroups &groups);
+    resolve_pinned(const std::string &parameter_file, const mesh::MeshGroups &groups);
 
     void
-      gather(const VectorType                             &vector,
-             const std::array<types::global_dof_index, 9> &dofs,
-             std::array<double, 9>                        &values) const;
+    gather(const VectorType                             &vector,
+           const std::array<types::global_dof_index, 9> &dofs,
+           std::array<double, 9>                        &values) const;
 
     MPI_Comm                                        communicator;
     const Parameters                               &parameters;

@@ -10,7 +10,7 @@ namespace clothsim
   {
     // Mesh path as written in the parameter file, relative to that file's directory.
     std::string
-      resolve_mesh_file(const ParameterInput &input)
+    resolve_mesh_file(const ParameterInput &input)
     {
       const std::filesystem::path mesh = input.parameters.scene.mesh_file;
       if (mesh.is_absolute() || input.directory.empty())
@@ -21,9 +21,9 @@ namespace clothsim
 
 
   std::unique_ptr<Scene>
-    load_scene(const std::string              &parameter_file,
-               const std::vector<std::string> &overrides,
-               const MPI_Comm                  communicator)
+  load_scene(const std::string              &parameter_file,
+             const std::vector<std::string> &overrides,
+             const MPI_Comm                  communicator)
   {
     auto scene       = std::make_unique<Scene>();
     scene->input     = read_parameters(scene->prm, parameter_file, overrides);

@@ -27,7 +27,7 @@ namespace clothsim
     std::vector<ProbeLocation>  probes;
 
     const Parameters &
-      parameters() const
+    parameters() const
     {
       return input.parameters;
     }
@@ -37,7 +37,7 @@ namespace clothsim
   // and locates the probes. Collective over `communicator`. Throws InputError on bad
   // input.
   std::unique_ptr<Scene>
-    load_scene(const std::string              &parameter_file,
-               const std::vector<std::string> &overrides,
-               const MPI_Comm                  communicator);
+  load_scene(const std::string              &parameter_file,
+             const std::vector<std::string> &overrides,
+             const MPI_Comm                  communicator);
 } // namespace clothsim

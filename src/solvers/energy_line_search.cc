@@ -10,16 +10,16 @@
 namespace clothsim
 {
   EnergyLineSearch::EnergyLineSearch(Objective objective, const unsigned int max_halvings)
-      : objective(std::move(objective))
-      , max_halvings(max_halvings)
+    : objective(std::move(objective))
+    , max_halvings(max_halvings)
   {}
 
 
   bool
-    EnergyLineSearch::compute(NOX::Abstract::Group        &group,
-                              double                      &step,
-                              const NOX::Abstract::Vector &direction,
-                              const NOX::Solver::Generic  &solver)
+  EnergyLineSearch::compute(NOX::Abstract::Group        &group,
+                            double                      &step,
+                            const NOX::Abstract::Vector &direction,
+                            const NOX::Solver::Generic  &solver)
   {
     constexpr double            sufficient_decrease = 1e-4;
     const NOX::Abstract::Group &old_group           = solver.getPreviousSolutionGroup();
@@ -41,6 +41,8 @@ namespace clothsim
           {
             n_cuts += cut;
             group.computeF();
+            have_accepted_value = true;
+            accepted_value      = value;
             return true;
           }
         // Below the objective's resolution: accept if the residual decreases.
@@ -50,6 +52,8 @@ namespace clothsim
             if (group.getNormF() < old_norm)
               {
                 n_cuts += cut;
+                have_accepted_value = true;
+                accepted_value      = value;
                 return true;
               }
           }

@@ -24,10 +24,10 @@ namespace clothsim
     EnergyLineSearch(Objective objective, const unsigned int max_halvings);
 
     bool
-      compute(NOX::Abstract::Group        &group,
-              double                      &step,
-              const NOX::Abstract::Vector &direction,
-              const NOX::Solver::Generic  &solver) override;
+    compute(NOX::Abstract::Group        &group,
+            double                      &step,
+            const NOX::Abstract::Vector &direction,
+            const NOX::Solver::Generic  &solver) override;
 
     // Line-search cuts in the last solve, and whether any step was judged by the
     // residual.
@@ -36,6 +36,10 @@ namespace clothsim
   private:
     Objective          objective;
     const unsigned int max_halvings;
+    // Φ at the step accepted last: the next search starts from there (one evaluation
+    // saved).
+    bool   have_accepted_value = false;
+    double accepted_value      = 0.;
   };
 
   // NOX builds line searches through a factory ("User Defined Line Search Factory").
@@ -43,12 +47,12 @@ namespace clothsim
   {
   public:
     explicit EnergyLineSearchFactory(Teuchos::RCP<EnergyLineSearch> line_search)
-        : line_search(line_search)
+      : line_search(line_search)
     {}
 
     Teuchos::RCP<NOX::LineSearch::Generic>
-      buildLineSearch(const Teuchos::RCP<NOX::GlobalData> &,
-                      Teuchos::ParameterList &) const override
+    buildLineSearch(const Teuchos::RCP<NOX::GlobalData> &,
+                    Teuchos::ParameterList &) const override
     {
       return line_search;
     }

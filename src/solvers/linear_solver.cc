@@ -3,33 +3,60 @@
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_solver.h>
 
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+
 namespace clothsim
 {
-  LinearSolver::LinearSolver(const LinearSolverParameters  &parameters,
-                             std::vector<std::vector<bool>> constant_modes)
-      : parameters(parameters)
-      , constant_modes(std::move(constant_modes))
-  {}
+  LinearSolver::LinearSolver(const LinearSolverParameters    &parameters,
+                             std::vector<std::vector<double>> near_null_space)
+    : parameters(parameters)
+    , near_null_space(std::move(near_null_space))
+  {
+    for (const std::vector<double> &mode : this->near_null_space)
+      null_space_storage.insert(null_space_storage.end(), mode.begin(), mode.end());
+  }
 
 
   void
-    LinearSolver::update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix)
+  LinearSolver::update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix)
   {
     if (parameters.method == "direct")
       return;
-    if (parameters.preconditioner == "amg")
+    if (parameters.preconditioner == "amg" && amg != nullptr &&
+        parameters.amg_reuse_aggregates)
       {
+        // Same sparsity, new entries: keep the aggregates, rebuild the smoothed
+        // prolongators and coarse operators (ML's ReComputePreconditioner), several times
+        // cheaper.
+        amg->reinit();
+      }
+    else if (parameters.preconditioner == "amg")
+      {
+        // deal.II's ML settings for an elliptic problem, then our near-null space (ML's
+        // "pre-computed" null space, column-major on the owned rows).
         TrilinosWrappers::PreconditionAMG::AdditionalData data;
         data.elliptic              = true;
         data.higher_order_elements = false;
         data.n_cycles              = 1;
         data.aggregation_threshold = parameters.amg_aggregation_threshold;
-        data.constant_modes        = constant_modes;
         data.smoother_sweeps       = parameters.amg_smoother_sweeps;
         data.smoother_type         = "Chebyshev";
         data.coarse_type           = "Amesos-KLU";
+        Teuchos::ParameterList              ml_parameters;
+        std::unique_ptr<Epetra_MultiVector> unused_constant_modes;
+        data.set_parameters(ml_parameters,
+                            unused_constant_modes,
+                            matrix.trilinos_matrix());
+        ml_parameters.set("PDE equations", 3);
+        ml_parameters.set("null space: type", "pre-computed");
+        ml_parameters.set("null space: dimension",
+                          static_cast<int>(near_null_space.size()));
+        ml_parameters.set("null space: vectors", null_space_storage.data());
+        ml_parameters.set("null space: add default vectors", false);
         auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        amg->initialize(matrix, data);
+        amg->initialize(matrix, ml_parameters);
+        this->amg      = amg.get();
         preconditioner = std::move(amg);
       }
     else
@@ -42,10 +69,10 @@ namespace clothsim
 
 
   bool
-    LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
-                        TrilinosWrappers::MPI::Vector        &x,
-                        const TrilinosWrappers::MPI::Vector  &b,
-                        unsigned int                         &iterations) const
+  LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
+                      TrilinosWrappers::MPI::Vector        &x,
+                      const TrilinosWrappers::MPI::Vector  &b,
+                      unsigned int                         &iterations) const
   {
     x                   = 0.;
     const double b_norm = b.l2_norm();

@@ -17,27 +17,30 @@ namespace clothsim
   class LinearSolver
   {
   public:
-    // constant_modes: one mask per displacement component over the locally owned dofs
-    // (DoFTools::extract_constant_modes), the AMG near-null space.
-    LinearSolver(const LinearSolverParameters  &parameters,
-                 std::vector<std::vector<bool>> constant_modes);
+    // near_null_space: the AMG near-null space, one vector per mode over the locally
+    // owned dofs (here: one translation per displacement component).
+    LinearSolver(const LinearSolverParameters    &parameters,
+                 std::vector<std::vector<double>> near_null_space);
 
     // Builds the preconditioner for `matrix` (call after every new tangent).
     void
-      update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix);
+    update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix);
 
     // Solves A x = b to |b - A x| <= relative_tolerance |b|. Returns false if the Krylov
     // method did not converge; `iterations` gets the iteration count (1 for the direct
     // solver).
     bool
-      solve(const TrilinosWrappers::SparseMatrix &matrix,
-            TrilinosWrappers::MPI::Vector        &x,
-            const TrilinosWrappers::MPI::Vector  &b,
-            unsigned int                         &iterations) const;
+    solve(const TrilinosWrappers::SparseMatrix &matrix,
+          TrilinosWrappers::MPI::Vector        &x,
+          const TrilinosWrappers::MPI::Vector  &b,
+          unsigned int                         &iterations) const;
 
   private:
-    const LinearSolverParameters                        parameters;
-    const std::vector<std::vector<bool>>                constant_modes;
+    const LinearSolverParameters           parameters;
+    const std::vector<std::vector<double>> near_null_space;
+    std::vector<double> null_space_storage; // the modes column-major, as ML reads them
     std::unique_ptr<TrilinosWrappers::PreconditionBase> preconditioner;
+    // The AMG hierarchy, if `preconditioner` is one: later tangents reuse its aggregates.
+    TrilinosWrappers::PreconditionAMG *amg = nullptr;
   };
 } // namespace clothsim

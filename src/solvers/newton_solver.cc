@@ -24,19 +24,19 @@ namespace clothsim
     using TrilinosVector = TrilinosWrappers::MPI::Vector;
 
     void
-      copy(const Epetra_Vector &from, TrilinosVector &to)
+    copy(const Epetra_Vector &from, TrilinosVector &to)
     {
       std::copy(from.Values(), from.Values() + from.MyLength(), to.begin());
     }
 
     void
-      copy(const TrilinosVector &from, Epetra_Vector &to)
+    copy(const TrilinosVector &from, Epetra_Vector &to)
     {
       std::copy(from.begin(), from.end(), to.Values());
     }
 
     const Epetra_Vector &
-      epetra(const NOX::Abstract::Vector &vector)
+    epetra(const NOX::Abstract::Vector &vector)
     {
       return dynamic_cast<const NOX::Epetra::Vector &>(vector).getEpetraVector();
     }
@@ -62,13 +62,13 @@ namespace clothsim
     {
     public:
       explicit Interface(Context &context)
-          : context(context)
+        : context(context)
       {}
 
       bool
-        computeF(const Epetra_Vector &x,
-                 Epetra_Vector       &F,
-                 const NOX::Epetra::Interface::Required::FillType) override
+      computeF(const Epetra_Vector &x,
+               Epetra_Vector       &F,
+               const NOX::Epetra::Interface::Required::FillType) override
       {
         copy(x, context.u);
         context.problem.residual(context.u, context.rhs);
@@ -86,29 +86,29 @@ namespace clothsim
     {
     public:
       explicit LinearSystem(Context &context)
-          : context(context)
+        : context(context)
       {}
 
       bool
-        applyJacobian(const NOX::Epetra::Vector &input,
-                      NOX::Epetra::Vector       &result) const override
+      applyJacobian(const NOX::Epetra::Vector &input,
+                    NOX::Epetra::Vector       &result) const override
       {
         return context.matrix.trilinos_matrix().Apply(input.getEpetraVector(),
                                                       result.getEpetraVector()) == 0;
       }
 
       bool
-        applyJacobianTranspose(const NOX::Epetra::Vector &input,
-                               NOX::Epetra::Vector       &result) const override
+      applyJacobianTranspose(const NOX::Epetra::Vector &input,
+                             NOX::Epetra::Vector       &result) const override
       {
         // The tangent is symmetric.
         return applyJacobian(input, result);
       }
 
       bool
-        applyJacobianInverse(Teuchos::ParameterList &,
-                             const NOX::Epetra::Vector &input,
-                             NOX::Epetra::Vector       &result) override
+      applyJacobianInverse(Teuchos::ParameterList &,
+                           const NOX::Epetra::Vector &input,
+                           NOX::Epetra::Vector       &result) override
       {
         copy(input.getEpetraVector(), context.rhs);
         bool ok = solve();
@@ -131,7 +131,7 @@ namespace clothsim
       }
 
       bool
-        solve()
+      solve()
       {
         if (!context.preconditioner_current)
           {
@@ -153,27 +153,27 @@ namespace clothsim
       }
 
       bool
-        applyRightPreconditioning(bool,
-                                  Teuchos::ParameterList &,
-                                  const NOX::Epetra::Vector &input,
-                                  NOX::Epetra::Vector       &result) const override
+      applyRightPreconditioning(bool,
+                                Teuchos::ParameterList &,
+                                const NOX::Epetra::Vector &input,
+                                NOX::Epetra::Vector       &result) const override
       {
         result = input;
         return true;
       }
 
       Teuchos::RCP<NOX::Epetra::Scaling>
-        getScaling() override
+      getScaling() override
       {
         return Teuchos::null;
       }
 
       void
-        resetScaling(const Teuchos::RCP<NOX::Epetra::Scaling> &) override
+      resetScaling(const Teuchos::RCP<NOX::Epetra::Scaling> &) override
       {}
 
       bool
-        computeJacobian(const NOX::Epetra::Vector &x) override
+      computeJacobian(const NOX::Epetra::Vector &x) override
       {
         copy(x.getEpetraVector(), last_x);
         context.tangent_projected = context.tangent_mode == "projected";
@@ -183,76 +183,76 @@ namespace clothsim
       }
 
       bool
-        createPreconditioner(const NOX::Epetra::Vector &,
-                             Teuchos::ParameterList &,
-                             bool) const override
+      createPreconditioner(const NOX::Epetra::Vector &,
+                           Teuchos::ParameterList &,
+                           bool) const override
       {
         return true;
       }
 
       bool
-        destroyPreconditioner() const override
+      destroyPreconditioner() const override
       {
         return true;
       }
 
       bool
-        recomputePreconditioner(const NOX::Epetra::Vector &,
-                                Teuchos::ParameterList &) const override
+      recomputePreconditioner(const NOX::Epetra::Vector &,
+                              Teuchos::ParameterList &) const override
       {
         return true;
       }
 
       PreconditionerReusePolicyType
-        getPreconditionerPolicy(bool) override
+      getPreconditionerPolicy(bool) override
       {
         // The preconditioner is rebuilt in applyJacobianInverse after each new tangent.
         return PRPT_REUSE;
       }
 
       bool
-        isPreconditionerConstructed() const override
+      isPreconditionerConstructed() const override
       {
         return true;
       }
 
       bool
-        hasPreconditioner() const override
+      hasPreconditioner() const override
       {
         return false;
       }
 
       Teuchos::RCP<const Epetra_Operator>
-        getJacobianOperator() const override
+      getJacobianOperator() const override
       {
         return Teuchos::rcp(&context.matrix.trilinos_matrix(), false);
       }
 
       Teuchos::RCP<Epetra_Operator>
-        getJacobianOperator() override
+      getJacobianOperator() override
       {
         return Teuchos::rcp(
           const_cast<Epetra_CrsMatrix *>(&context.matrix.trilinos_matrix()), false);
       }
 
       Teuchos::RCP<const Epetra_Operator>
-        getGeneratedPrecOperator() const override
+      getGeneratedPrecOperator() const override
       {
         return Teuchos::null;
       }
 
       Teuchos::RCP<Epetra_Operator>
-        getGeneratedPrecOperator() override
+      getGeneratedPrecOperator() override
       {
         return Teuchos::null;
       }
 
       void
-        setJacobianOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
+      setJacobianOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
       {}
 
       void
-        setPrecOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
+      setPrecOperatorForSolve(const Teuchos::RCP<const Epetra_Operator> &) override
       {}
 
     private:
@@ -267,12 +267,11 @@ namespace clothsim
     {
     public:
       explicit SmallFullStep(const double tolerance)
-          : tolerance(tolerance)
+        : tolerance(tolerance)
       {}
 
       NOX::StatusTest::StatusType
-        checkStatus(const NOX::Solver::Generic &solver,
-                    NOX::StatusTest::CheckType) override
+      checkStatus(const NOX::Solver::Generic &solver, NOX::StatusTest::CheckType) override
       {
         status = NOX::StatusTest::Unconverged;
         if (solver.getNumIterations() == 0)
@@ -289,13 +288,13 @@ namespace clothsim
       }
 
       NOX::StatusTest::StatusType
-        getStatus() const override
+      getStatus() const override
       {
         return status;
       }
 
       std::ostream &
-        print(std::ostream &stream, int indent = 0) const override
+      print(std::ostream &stream, int indent = 0) const override
       {
         for (int i = 0; i < indent; ++i)
           stream << ' ';
@@ -312,18 +311,18 @@ namespace clothsim
 
   NewtonSolver::NewtonSolver(const NonlinearSolverParameters &nonlinear,
                              const LinearSolverParameters    &linear,
-                             std::vector<std::vector<bool>>   constant_modes,
+                             std::vector<std::vector<double>> near_null_space,
                              TrilinosWrappers::SparseMatrix  &tangent_matrix,
                              TimerOutput                     &timer)
-      : parameters(nonlinear)
-      , linear_solver(linear, std::move(constant_modes))
-      , tangent_matrix(tangent_matrix)
-      , timer(timer)
+    : parameters(nonlinear)
+    , linear_solver(linear, std::move(near_null_space))
+    , tangent_matrix(tangent_matrix)
+    , timer(timer)
   {}
 
 
   NewtonResult
-    NewtonSolver::solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u)
+  NewtonSolver::solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u)
   {
     Context context{problem,
                     tangent_matrix,

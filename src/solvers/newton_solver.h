@@ -27,19 +27,19 @@ namespace clothsim
 
     // The objective whose gradient is the residual (J, summed over ranks).
     virtual double
-      objective(const TrilinosWrappers::MPI::Vector &u) = 0;
+    objective(const TrilinosWrappers::MPI::Vector &u) = 0;
 
     // F(u) = ∇objective, zero at constrained dofs.
     virtual void
-      residual(const TrilinosWrappers::MPI::Vector &u,
-               TrilinosWrappers::MPI::Vector       &F) = 0;
+    residual(const TrilinosWrappers::MPI::Vector &u,
+             TrilinosWrappers::MPI::Vector       &F) = 0;
 
     // J(u) = ∇F, with constrained rows and columns eliminated; `projected`: a positive
     // definite modification instead of the exact Hessian.
     virtual void
-      tangent(const TrilinosWrappers::MPI::Vector &u,
-              TrilinosWrappers::SparseMatrix      &J,
-              const bool                           projected) = 0;
+    tangent(const TrilinosWrappers::MPI::Vector &u,
+            TrilinosWrappers::SparseMatrix      &J,
+            const bool                           projected) = 0;
   };
 
   struct NewtonResult
@@ -59,14 +59,14 @@ namespace clothsim
     // `tangent_matrix` must have the problem's sparsity; it is used as NOX's Jacobian.
     NewtonSolver(const NonlinearSolverParameters &nonlinear,
                  const LinearSolverParameters    &linear,
-                 std::vector<std::vector<bool>>   constant_modes,
+                 std::vector<std::vector<double>> near_null_space,
                  TrilinosWrappers::SparseMatrix  &tangent_matrix,
                  TimerOutput                     &timer);
 
     // Solves F(u) = 0 starting from u (which satisfies the constraints); u gets the last
     // iterate.
     NewtonResult
-      solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u);
+    solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u);
 
   private:
     const NonlinearSolverParameters parameters;

@@ -16,15 +16,15 @@ namespace clothsim
     {
     public:
       StepProblem(const ClothModel &model, const StepTerms &terms, TimerOutput &timer)
-          : model(model)
-          , terms(terms)
-          , timer(timer)
+        : model(model)
+        , terms(terms)
+        , timer(timer)
       {
         model.initialize_ghosted(ghosted);
       }
 
       double
-        objective(const VectorType &u) override
+      objective(const VectorType &u) override
       {
         TimerOutput::Scope scope(timer, "assemble energy");
         ghosted = u;
@@ -32,7 +32,7 @@ namespace clothsim
       }
 
       void
-        residual(const VectorType &u, VectorType &F) override
+      residual(const VectorType &u, VectorType &F) override
       {
         TimerOutput::Scope scope(timer, "assemble residual");
         ghosted = u;
@@ -40,7 +40,7 @@ namespace clothsim
       }
 
       void
-        tangent(const VectorType &u, MatrixType &J, const bool projected) override
+      tangent(const VectorType &u, MatrixType &J, const bool projected) override
       {
         TimerOutput::Scope scope(timer, "assemble tangent");
         ghosted                 = u;
@@ -63,16 +63,16 @@ namespace clothsim
                            OutputWriter       &output,
                            ConditionalOStream &pcout,
                            TimerOutput        &timer)
-      : parameters(parameters)
-      , model(model)
-      , output(output)
-      , pcout(pcout)
-      , timer(timer)
-      , newton(parameters.nonlinear_solver,
-               parameters.linear_solver,
-               model.constant_modes(),
-               tangent,
-               timer)
+    : parameters(parameters)
+    , model(model)
+    , output(output)
+    , pcout(pcout)
+    , timer(timer)
+    , newton(parameters.nonlinear_solver,
+             parameters.linear_solver,
+             model.near_null_space(),
+             tangent,
+             timer)
   {
     model.initialize_matrix(tangent);
     model.initialize_owned(u_n);
@@ -86,9 +86,9 @@ namespace clothsim
 
 
   NewtonResult
-    TimeStepper::solve_step(const double time_new,
-                            const double dt,
-                            const double load_factor)
+  TimeStepper::solve_step(const double time_new,
+                          const double dt,
+                          const double load_factor)
   {
     const bool dynamic = parameters.time.integrator == Integrator::backward_euler;
     StepTerms  terms;
@@ -129,7 +129,7 @@ namespace clothsim
 
 
   RunSummary
-    TimeStepper::run()
+  TimeStepper::run()
   {
     const bool   dynamic = parameters.time.integrator == Integrator::backward_euler;
     const double end     = dynamic ? parameters.time.end_time : 1.;

@@ -48,11 +48,11 @@ namespace clothsim
 
     // Runs the whole simulation from the reference state at rest.
     RunSummary
-      run();
+    run();
 
     // The displacement and velocity at the end (ghosted).
     const VectorType &
-      displacement() const
+    displacement() const
     {
       return u_ghosted;
     }
@@ -60,7 +60,7 @@ namespace clothsim
   private:
     // Solves one step of size dt from state n; returns the Newton result, leaves u_new.
     NewtonResult
-      solve_step(const double time_new, const double dt, const double load_factor);
+    solve_step(const double time_new, const double dt, const double load_factor);
 
     const Parameters   &parameters;
     ClothModel         &model;
