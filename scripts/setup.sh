@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make libdeal.ii-dev trilinos-all-dev libopenmpi-dev openmpi-bin gmsh
-          libgmsh-dev libvtk9-dev numdiff)
+          libgmsh-dev libvtk9-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

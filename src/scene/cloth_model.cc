@@ -283,6 +283,20 @@ namespace clothsim
   } // namespace
 
 
+  physics::TrianglePositions
+  ClothModel::current_positions(const Element         &element,
+                                const VectorType      &u,
+                                std::array<double, 9> &u_e) const
+  {
+    gather(u, element.dofs, u_e);
+    physics::TrianglePositions x = element.reference;
+    for (unsigned int v = 0; v < 3; ++v)
+      for (unsigned int d = 0; d < 3; ++d)
+        x[v][d] += u_e[3 * v + d];
+    return x;
+  }
+
+
   void
   ClothModel::prepare_damping(const VectorType &u_n)
   {
@@ -297,12 +311,8 @@ namespace clothsim
     physics::ElementVector gradient;
     for (unsigned int e = 0; e < elements.size(); ++e)
       {
-        const Element &element = elements[e];
-        gather(u_n, element.dofs, u_e);
-        physics::TrianglePositions x = element.reference;
-        for (unsigned int v = 0; v < 3; ++v)
-          for (unsigned int d = 0; d < 3; ++d)
-            x[v][d] += u_e[3 * v + d];
+        const Element                   &element = elements[e];
+        const physics::TrianglePositions x       = current_positions(element, u_n, u_e);
         physics::membrane_energy_gradient_hessian(material,
                                                   element.rest,
                                                   x,
@@ -353,12 +363,8 @@ namespace clothsim
 
     for (unsigned int e = 0; e < elements.size(); ++e)
       {
-        const Element &element = elements[e];
-        gather(u, element.dofs, u_e);
-        physics::TrianglePositions x = element.reference;
-        for (unsigned int v = 0; v < 3; ++v)
-          for (unsigned int d = 0; d < 3; ++d)
-            x[v][d] += u_e[3 * v + d];
+        const Element                   &element = elements[e];
+        const physics::TrianglePositions x       = current_positions(element, u, u_e);
 
         // Membrane energy W_e.
         if (gradient != nullptr || hessian != nullptr)
@@ -467,11 +473,7 @@ namespace clothsim
     std::vector<double>    values(9);
     for (const Element &element : elements)
       {
-        gather(u, element.dofs, u_e);
-        physics::TrianglePositions x = element.reference;
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int d = 0; d < 3; ++d)
-            x[a][d] += u_e[3 * a + d];
+        const physics::TrianglePositions x = current_positions(element, u, u_e);
         physics::membrane_energy_gradient_hessian(
           material, element.rest, x, 0., g_e, nullptr);
         std::copy(g_e.begin(), g_e.end(), values.begin());
@@ -492,12 +494,8 @@ namespace clothsim
     Energies              local;
     for (const Element &element : elements)
       {
-        gather(u, element.dofs, u_e);
+        const physics::TrianglePositions x = current_positions(element, u, u_e);
         gather(v, element.dofs, v_e);
-        physics::TrianglePositions x = element.reference;
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int d = 0; d < 3; ++d)
-            x[a][d] += u_e[3 * a + d];
         local.elastic += physics::membrane_energy(material, element.rest, x);
         const double vertex_mass = rho * element.rest.area / 3.;
         for (unsigned int a = 0; a < 3; ++a)
@@ -525,12 +523,8 @@ namespace clothsim
     double                smallest = std::numeric_limits<double>::max();
     for (const Element &element : elements)
       {
-        gather(u, element.dofs, u_e);
-        physics::TrianglePositions x = element.reference;
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int d = 0; d < 3; ++d)
-            x[a][d] += u_e[3 * a + d];
-        const double ratio =
+        const physics::TrianglePositions x = current_positions(element, u, u_e);
+        const double                     ratio =
           physics::membrane_strain_stress(material, element.rest, x).area_ratio;
         smallest = std::min(smallest, std::isfinite(ratio) ? ratio : -1.);
       }
@@ -550,13 +544,9 @@ namespace clothsim
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          const Element &element = elements[e++];
-          gather(u, element.dofs, u_e);
-          physics::TrianglePositions x = element.reference;
-          for (unsigned int a = 0; a < 3; ++a)
-            for (unsigned int d = 0; d < 3; ++d)
-              x[a][d] += u_e[3 * a + d];
-          const auto measures =
+          const Element                   &element = elements[e++];
+          const physics::TrianglePositions x       = current_positions(element, u, u_e);
+          const auto                       measures =
             physics::membrane_strain_stress(material, element.rest, x);
           strain[cell->active_cell_index()] = measures.green_strain_norm;
           stress[cell->active_cell_index()] = measures.stress_norm;

@@ -211,6 +211,12 @@ namespace clothsim
     void
     resolve_pinned(const std::string &parameter_file, const mesh::MeshGroups &groups);
 
+    // Current vertex positions x = X + u of an element; u_e gets its displacements.
+    physics::TrianglePositions
+    current_positions(const Element         &element,
+                      const VectorType      &u,
+                      std::array<double, 9> &u_e) const;
+
     void
     gather(const VectorType                             &vector,
            const std::array<types::global_dof_index, 9> &dofs,
