@@ -368,6 +368,12 @@ namespace clothsim
       "... or when a full Newton step (not cut by the line search) moves no "
       "vertex coordinate by more than this (m). 0 disables this criterion.");
     prm.declare_entry(
+      "Print iterations",
+      "false",
+      Patterns::Bool(),
+      "Print NOX's residual norm, step length and update norm for every Newton "
+      "iteration (for diagnosing convergence).");
+    prm.declare_entry(
       "Tangent",
       "adaptive",
       Patterns::Selection("adaptive|projected|exact"),
@@ -391,6 +397,7 @@ namespace clothsim
     relative_tolerance     = prm.get_double("Relative tolerance");
     line_search            = prm.get("Line search");
     displacement_tolerance = prm.get_double("Displacement tolerance");
+    print_iterations       = prm.get_bool("Print iterations");
     tangent                = prm.get("Tangent");
     prm.leave_subsection();
   }

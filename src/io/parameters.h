@@ -107,6 +107,7 @@ namespace clothsim
     std::string  line_search;            // "polynomial", "backtrack", "full step"
     std::string  tangent;                // "adaptive", "projected", "exact"
     double       displacement_tolerance; // m
+    bool         print_iterations;
 
     static void
     declare_parameters(ParameterHandler &prm);

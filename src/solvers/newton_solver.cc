@@ -345,7 +345,7 @@ namespace clothsim
     nox_parameters->set("Nonlinear Solver", "Line Search Based");
     nox_parameters->sublist("Printing")
       .set("Output Information",
-           getenv("CLOTHSIM_NOX_DEBUG")
+           parameters.print_iterations
              ? NOX::Utils::Error + NOX::Utils::OuterIteration + NOX::Utils::InnerIteration
              : NOX::Utils::Error);
     nox_parameters->sublist("Direction").set("Method", "Newton");
