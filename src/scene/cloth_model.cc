@@ -606,15 +606,50 @@ namespace clothsim
   std::vector<std::vector<double>>
   ClothModel::near_null_space() const
   {
-    // The three translations. (The three rotations of a rigid-body null space made ML's
-    // CG diverge on the default scene; see the notes of the foundation issue.)
+    // Translations, plus the rotation about the sheet's mean normal n through its
+    // centroid: the membrane's in-plane elasticity has that rotation in its kernel.
+    // (Rotations about in-plane axes are not: they bend, and a tensioned membrane resists
+    // them like a Laplacian; with all six rigid modes ML's CG diverged on the default
+    // scene.)
+    Tensor<1, 3> moment, normal_sum;
+    double       area = 0.;
+    for (const Element &element : elements)
+      {
+        const auto &X = element.reference;
+        for (unsigned int v = 0; v < 3; ++v)
+          moment += (element.rest.area / 3.) * X[v];
+        normal_sum += 0.5 * cross_product_3d(X[1] - X[0], X[2] - X[0]);
+        area += element.rest.area;
+      }
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        moment[d]     = Utilities::MPI::sum(moment[d], communicator);
+        normal_sum[d] = Utilities::MPI::sum(normal_sum[d], communicator);
+      }
+    area                        = Utilities::MPI::sum(area, communicator);
+    const Tensor<1, 3> centroid = moment / area;
+    // A sheet that is far from planar has no single in-plane rotation.
+    const bool         nearly_planar = normal_sum.norm() > 0.9 * area;
+    const Tensor<1, 3> normal        = normal_sum / normal_sum.norm();
+
     const unsigned int               n_owned = locally_owned_dofs.n_elements();
-    std::vector<std::vector<double>> modes(3, std::vector<double>(n_owned, 0.));
+    std::vector<std::vector<double>> modes(nearly_planar ? 4 : 3,
+                                           std::vector<double>(n_owned, 0.));
     for (const Element &element : elements)
       for (unsigned int v = 0; v < 3; ++v)
-        for (unsigned int c = 0; c < 3; ++c)
-          if (locally_owned_dofs.is_element(element.dofs[3 * v + c]))
-            modes[c][locally_owned_dofs.index_within_set(element.dofs[3 * v + c])] = 1.;
+        {
+          const Tensor<1, 3> rotation =
+            cross_product_3d(normal, element.reference[v] - centroid);
+          for (unsigned int c = 0; c < 3; ++c)
+            if (locally_owned_dofs.is_element(element.dofs[3 * v + c]))
+              {
+                const unsigned int i =
+                  locally_owned_dofs.index_within_set(element.dofs[3 * v + c]);
+                modes[c][i] = 1.;
+                if (nearly_planar)
+                  modes[3][i] = rotation[c];
+              }
+        }
     return modes;
   }
 
