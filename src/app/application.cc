@@ -93,10 +93,8 @@ namespace clothsim
           }
         if (command_line.action == CommandLine::Action::print_parameters)
           {
-            ParameterHandler prm;
-            Parameters::declare_parameters(prm);
             if (is_root)
-              prm.print_parameters(std::cout, ParameterHandler::Text);
+              print_parameter_reference(std::cout);
             return 0;
           }
 

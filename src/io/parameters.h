@@ -8,6 +8,7 @@
 #include <deal.II/base/point.h>
 
 #include <array>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -167,6 +168,11 @@ namespace clothsim
     void
     parse_parameters(ParameterHandler &prm);
   };
+
+  // Every parameter as "Section/Name = default", its allowed values and its documentation
+  // (units included), for clothsim --print-parameters.
+  void
+  print_parameter_reference(std::ostream &out);
 
   // The parameter file as read, with command-line overrides applied.
   struct ParameterInput
