@@ -440,12 +440,18 @@ namespace clothsim
                       Patterns::Double(0., 1.),
                       "ML aggregation threshold (strength of connection).");
     prm.declare_entry(
+      "AMG coarse size",
+      "2000",
+      Patterns::Integer(10, 100000),
+      "Largest multigrid level solved directly (Amesos KLU), in unknowns.");
+    prm.declare_entry(
       "AMG reuse aggregates",
       "true",
       Patterns::Bool(),
-      "Build the multigrid aggregates from the first tangent of the run and "
-      "only recompute the hierarchy's operators for later tangents (same "
-      "sparsity); false rebuilds everything for every tangent.");
+      "Keep the multigrid aggregates and only recompute the hierarchy's operators "
+      "for a new tangent (same sparsity), as long as CG needs at most 30 % more "
+      "iterations than right after the aggregates were built; false rebuilds "
+      "everything for every tangent.");
     prm.leave_subsection();
   }
 
@@ -460,6 +466,7 @@ namespace clothsim
     amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
     amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
     amg_reuse_aggregates      = prm.get_bool("AMG reuse aggregates");
+    amg_coarse_size           = prm.get_integer("AMG coarse size");
     prm.leave_subsection();
   }
 

@@ -125,6 +125,7 @@ namespace clothsim
     unsigned int amg_smoother_sweeps;
     double       amg_aggregation_threshold;
     bool         amg_reuse_aggregates;
+    unsigned int amg_coarse_size;
 
     static void
     declare_parameters(ParameterHandler &prm);

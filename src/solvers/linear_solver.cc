@@ -23,8 +23,12 @@ namespace clothsim
   {
     if (parameters.method == "direct")
       return;
+    // Aggregates built from an early tangent (the unstressed sheet has no out-of-plane
+    // stiffness) stop fitting as the sheet deforms: reuse them only while CG needs at
+    // most 30 % more iterations than right after they were built.
+    const bool aggregates_fit = last_iterations <= 1.3 * iterations_after_rebuild + 1;
     if (parameters.preconditioner == "amg" && amg != nullptr &&
-        parameters.amg_reuse_aggregates)
+        parameters.amg_reuse_aggregates && aggregates_fit)
       {
         // Same sparsity, new entries: keep the aggregates, rebuild the smoothed
         // prolongators and coarse operators (ML's ReComputePreconditioner), several times
@@ -54,10 +58,13 @@ namespace clothsim
                           static_cast<int>(near_null_space.size()));
         ml_parameters.set("null space: vectors", null_space_storage.data());
         ml_parameters.set("null space: add default vectors", false);
+        ml_parameters.set("coarse: max size",
+                          static_cast<int>(parameters.amg_coarse_size));
         auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
         amg->initialize(matrix, ml_parameters);
-        this->amg      = amg.get();
-        preconditioner = std::move(amg);
+        this->amg            = amg.get();
+        awaiting_first_solve = true;
+        preconditioner       = std::move(amg);
       }
     else
       {
@@ -119,7 +126,13 @@ namespace clothsim
         iterations = control.last_step();
         return false;
       }
-    iterations = control.last_step();
+    iterations      = control.last_step();
+    last_iterations = iterations;
+    if (awaiting_first_solve)
+      {
+        iterations_after_rebuild = iterations;
+        awaiting_first_solve     = false;
+      }
     return true;
   }
 } // namespace clothsim

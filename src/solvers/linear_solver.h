@@ -42,5 +42,10 @@ namespace clothsim
     std::unique_ptr<TrilinosWrappers::PreconditionBase> preconditioner;
     // The AMG hierarchy, if `preconditioner` is one: later tangents reuse its aggregates.
     TrilinosWrappers::PreconditionAMG *amg = nullptr;
+    // CG iterations of the last solve, and of the first solve after the aggregates were
+    // built.
+    mutable unsigned int last_iterations          = 0;
+    mutable unsigned int iterations_after_rebuild = 0;
+    mutable bool         awaiting_first_solve     = false;
   };
 } // namespace clothsim
