@@ -23,9 +23,10 @@ namespace clothsim
   {
     constexpr double            sufficient_decrease = 1e-4;
     const NOX::Abstract::Group &old_group           = solver.getPreviousSolutionGroup();
-    const double                old_value           = objective(old_group.getX());
-    const double                old_norm            = old_group.getNormF();
-    const double                slope = old_group.getF().innerProduct(direction);
+    const double                old_value =
+      have_accepted_value ? accepted_value : objective(old_group.getX());
+    const double old_norm = old_group.getNormF();
+    const double slope    = old_group.getF().innerProduct(direction);
     // The objective's own resolution: changes below this are round-off.
     const double noise =
       100. * std::numeric_limits<double>::epsilon() * std::abs(old_value);
