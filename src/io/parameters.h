@@ -126,6 +126,7 @@ namespace clothsim
     double       amg_aggregation_threshold;
     bool         amg_reuse_aggregates;
     unsigned int amg_coarse_size;
+    double       amg_chebyshev_range;
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -58,6 +58,7 @@ namespace clothsim
                           static_cast<int>(near_null_space.size()));
         ml_parameters.set("null space: vectors", null_space_storage.data());
         ml_parameters.set("null space: add default vectors", false);
+        ml_parameters.set("smoother: Chebyshev alpha", parameters.amg_chebyshev_range);
         ml_parameters.set("coarse: max size",
                           static_cast<int>(parameters.amg_coarse_size));
         auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
