@@ -377,7 +377,10 @@ namespace clothsim
                                                       hessian != nullptr ? &H_e
                                                                          : nullptr);
         else
-          value += physics::membrane_energy(material, element.rest, x);
+          {
+            value += physics::membrane_energy(material, element.rest, x);
+            g_e.fill(0.); // the load terms below still add to it
+          }
 
         const double vertex_mass = rho * element.rest.area / 3.;
         // Gravity: -λ f_gᵀ u_e with f_g = m_v g on each vertex.
