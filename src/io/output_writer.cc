@@ -92,20 +92,30 @@ namespace clothsim
 
     DataOut<2, 3> data_out;
     data_out.attach_dof_handler(model.get_dof_handler());
-    const std::vector<DataComponentInterpretation::DataComponentInterpretation>
-      vector_field(3, DataComponentInterpretation::component_is_part_of_vector);
+    std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      3, DataComponentInterpretation::component_is_part_of_vector);
+    if (model.has_bending())
+      vector_field.push_back(DataComponentInterpretation::component_is_scalar);
     data_out.add_data_vector(u,
-                             std::vector<std::string>(3, "displacement"),
+                             model.component_names("displacement"),
                              DataOut<2, 3>::type_dof_data,
                              vector_field);
     data_out.add_data_vector(v,
-                             std::vector<std::string>(3, "velocity"),
+                             model.component_names("velocity"),
                              DataOut<2, 3>::type_dof_data,
                              vector_field);
     Vector<double> strain, stress;
     model.cell_strain_stress(u, strain, stress);
     data_out.add_data_vector(strain, "green_strain", DataOut<2, 3>::type_cell_data);
     data_out.add_data_vector(stress, "membrane_stress", DataOut<2, 3>::type_cell_data);
+    Vector<double> curvature;
+    if (model.has_bending())
+      {
+        model.cell_curvature_change(u, curvature);
+        data_out.add_data_vector(curvature,
+                                 "curvature_change",
+                                 DataOut<2, 3>::type_cell_data);
+      }
     Vector<float> subdomain(model.get_dof_handler().get_triangulation().n_active_cells());
     subdomain = static_cast<float>(rank);
     data_out.add_data_vector(subdomain, "rank", DataOut<2, 3>::type_cell_data);

@@ -68,6 +68,29 @@ namespace clothsim
 
     const char *const solver_methods = "cg|gmres|direct";
 
+    Tensor<1, 3>
+    vector_entry(const std::string &text)
+    {
+      const auto   values = Utilities::string_to_double(Utilities::split_string_list(text, ','));
+      Tensor<1, 3> vector;
+      for (unsigned int d = 0; d < 3; ++d)
+        vector[d] = values[d];
+      return vector;
+    }
+
+    // 'name: fx, fy, fz; name2: ...' (already matched by the entry's Patterns::Map).
+    std::vector<GroupLoad>
+    group_loads(const std::string &text)
+    {
+      std::vector<GroupLoad> loads;
+      for (const std::string &item : Utilities::split_string_list(text, ';'))
+        {
+          const auto name_value = Utilities::split_string_list(item, ':');
+          loads.push_back({name_value[0], vector_entry(name_value[1])});
+        }
+      return loads;
+    }
+
     // The subsection path (a/b) enclosing the line named in deal.II's "Line <N> of file"
     // message.
     std::string
@@ -121,6 +144,21 @@ namespace clothsim
                       Patterns::Integer(0, 8),
                       "Number of uniform (red) refinements of the mesh as read; each one "
                       "quarters the triangles' area.");
+    prm.declare_entry(
+      "Surface",
+      "flat",
+      Patterns::Selection("flat|cylinder|sphere"),
+      "The exact rest surface of a curved mesh: refinement places new vertices "
+      "on it, so a refined cylinder stays a cylinder. 'flat': new vertices at edge "
+      "midpoints (right for flat sheets).");
+    prm.declare_entry("Surface center",
+                      "0, 0, 0",
+                      Patterns::List(Patterns::Double(), 3, 3, ","),
+                      "A point on the cylinder's axis, or the sphere's centre (m).");
+    prm.declare_entry("Surface axis",
+                      "0, 0, 1",
+                      Patterns::List(Patterns::Double(), 3, 3, ","),
+                      "Direction of the cylinder's axis.");
     prm.leave_subsection();
   }
 
@@ -131,6 +169,11 @@ namespace clothsim
     prm.enter_subsection("Mesh");
     mesh_file          = prm.get("Mesh file");
     global_refinements = prm.get_integer("Global refinements");
+    surface            = prm.get("Surface");
+    surface_center     = Point<3>(vector_entry(prm.get("Surface center")));
+    surface_axis       = vector_entry(prm.get("Surface axis"));
+    if (surface == "cylinder" && surface_axis.norm() == 0.)
+      throw InputError("", "Mesh/Surface axis", "the cylinder axis must not be zero");
     prm.leave_subsection();
   }
 
@@ -175,6 +218,27 @@ namespace clothsim
       Patterns::Selection("lumped|consistent"),
       "Mass matrix: 'lumped' (a third of each triangle's mass on each vertex) "
       "or 'consistent' (the P1 Galerkin mass matrix).");
+    prm.declare_entry(
+      "Bending",
+      "none",
+      Patterns::Selection("none|E and thickness|rigidity"),
+      "Bending stiffness (midedge-director shell, physics/bending.h): 'none' "
+      "(a membrane; no bending term is assembled), 'E and thickness' (plate "
+      "rigidity D = E h^3 / (12 (1 - nu^2)) from 'Young's modulus', 'Thickness' "
+      "and 'Poisson ratio'), or 'rigidity' ('Bending rigidity' given directly, "
+      "as measured for fabrics).");
+    prm.declare_entry("Bending rigidity",
+                      "1e-5",
+                      Patterns::Double(0., 1e15),
+                      "Bending rigidity D in N·m (= J), used when 'Bending = rigidity'. "
+                      "Fabrics: roughly 1e-6 to 1e-3.");
+    prm.declare_entry(
+      "Director function",
+      "angle",
+      Patterns::Selection("angle|sine|tangent"),
+      "f in the edge curvature 2 h f(tilt): 'angle' (f = id), 'sine', or "
+      "'tangent' (a barrier against folding a triangle flat onto its neighbour). "
+      "All three agree for small tilts.");
     prm.leave_subsection();
   }
 
@@ -189,6 +253,17 @@ namespace clothsim
     poisson_ratio = prm.get_double("Poisson ratio");
     areal_density = prm.get_double("Areal density");
     lumped_mass   = prm.get("Mass") == "lumped";
+    const std::string bending_given_as = prm.get("Bending");
+    bending                            = bending_given_as != "none";
+    if (bending_given_as == "rigidity")
+      bending_rigidity = prm.get_double("Bending rigidity");
+    else
+      {
+        const double h   = prm.get_double("Thickness");
+        bending_rigidity = prm.get_double("Young's modulus") * h * h * h /
+                           (12. * (1. - poisson_ratio * poisson_ratio));
+      }
+    director_function = prm.get("Director function");
     prm.leave_subsection();
   }
 
@@ -231,6 +306,25 @@ namespace clothsim
                       "0, 0, -9.81",
                       Patterns::List(Patterns::Double(-1e6, 1e6), 3, 3, ","),
                       "Gravitational acceleration g (x, y, z) in m/s².");
+    const auto group_vectors = Patterns::Map(Patterns::Anything(),
+                                             Patterns::List(Patterns::Double(), 3, 3, ","),
+                                             0,
+                                             1000,
+                                             ";",
+                                             ":");
+    prm.declare_entry(
+      "Point forces",
+      "",
+      group_vectors,
+      "Forces in N on every vertex of gmsh point groups: 'name: fx, fy, fz; "
+      "name2: ...'. Dead loads; scaled by the load factor in static mode.");
+    prm.declare_entry(
+      "Line forces",
+      "",
+      group_vectors,
+      "Forces in N per m of reference length along gmsh boundary line groups: "
+      "'name: qx, qy, qz; ...', lumped onto the edges' vertices. Dead loads; "
+      "scaled by the load factor in static mode.");
     prm.leave_subsection();
   }
 
@@ -242,6 +336,8 @@ namespace clothsim
       Utilities::string_to_double(Utilities::split_string_list(prm.get("Gravity"), ','));
     for (unsigned int d = 0; d < 3; ++d)
       gravity[d] = values[d];
+    point_forces = group_loads(prm.get("Point forces"));
+    line_forces  = group_loads(prm.get("Line forces"));
     prm.leave_subsection();
   }
 
@@ -265,6 +361,14 @@ namespace clothsim
       "Displacement of pinned vertices in m: three expressions 'ux; uy; uz' in "
       "the reference coordinates x, y, z (m) and time t (s), e.g. "
       "'0; 0; 0.1*sin(2*pi*t)'. In static mode t is the load factor 0..1.");
+    prm.declare_entry(
+      "Clamped groups",
+      "",
+      Patterns::List(Patterns::Anything(), 0, 100, ";"),
+      "gmsh boundary line groups that are clamped, separated by ';': their "
+      "vertices are fixed and the shell's director along them keeps its rest "
+      "direction (rotation about the edge held). Needs 'Material/Bending'. A line "
+      "group in 'Pinned groups' instead is simply supported (rotation free).");
     prm.leave_subsection();
   }
 
@@ -293,6 +397,7 @@ namespace clothsim
         pinned_groups.push_back(group);
       }
     pinned_displacement = prm.get("Pinned displacement");
+    clamped_groups = Utilities::split_string_list(prm.get("Clamped groups"), ';');
     prm.leave_subsection();
   }
 
@@ -322,7 +427,15 @@ namespace clothsim
     prm.declare_entry("Load steps",
                       "10",
                       Patterns::Integer(1, 100000),
-                      "Number of equal load increments in static mode.");
+                      "Number of equal load increments in static mode (the first "
+                      "increment's size 1/N when 'Adaptive load steps' is on).");
+    prm.declare_entry(
+      "Adaptive load steps",
+      "false",
+      Patterns::Bool(),
+      "Static mode: after an increment that Newton solves in at most 4 iterations "
+      "the next one is 1.5 times larger (never more than 1/'Load steps' times 4); "
+      "a failed increment is halved as always.");
     prm.leave_subsection();
   }
 
@@ -336,6 +449,7 @@ namespace clothsim
     time_step         = prm.get_double("Time step");
     max_step_halvings = prm.get_integer("Maximum step halvings");
     load_steps        = prm.get_integer("Load steps");
+    adaptive_load_steps = prm.get_bool("Adaptive load steps");
     prm.leave_subsection();
   }
 

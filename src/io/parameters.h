@@ -21,6 +21,10 @@ namespace clothsim
     std::string  name;               // output/<name>/; empty: the parameter file's stem
     std::string  mesh_file;          // relative to the parameter file's directory
     unsigned int global_refinements; // uniform refinements of the mesh as read
+    // Exact rest surface onto which refinement projects new vertices.
+    std::string  surface;        // "flat" (none), "cylinder", "sphere"
+    Point<3>     surface_center; // a point on the cylinder's axis, or the centre, m
+    Tensor<1, 3> surface_axis;   // cylinder axis direction
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -34,6 +38,9 @@ namespace clothsim
     double poisson_ratio;     // dimensionless
     double areal_density;     // kg/m²
     bool   lumped_mass;
+    bool   bending;           // assemble the bending energy
+    double bending_rigidity;  // D, N·m (derived when given as E and thickness)
+    std::string director_function; // "angle", "sine", "tangent" (see physics/bending.h)
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -52,9 +59,19 @@ namespace clothsim
     parse_parameters(ParameterHandler &prm);
   };
 
+  // A load on the vertices of a point group (N per vertex) or along a boundary line
+  // group (N per m of reference length).
+  struct GroupLoad
+  {
+    std::string  name;
+    Tensor<1, 3> value;
+  };
+
   struct LoadParameters
   {
-    Tensor<1, 3> gravity; // m/s²
+    Tensor<1, 3>           gravity;      // m/s²
+    std::vector<GroupLoad> point_forces; // N
+    std::vector<GroupLoad> line_forces;  // N/m
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -72,6 +89,7 @@ namespace clothsim
   struct ConstraintParameters
   {
     std::vector<PinnedGroup> pinned_groups;
+    std::vector<std::string> clamped_groups; // boundary line groups
     std::string pinned_displacement; // FunctionParser expression, x;y;z in m of (x,y,z,t)
 
     static void
@@ -92,7 +110,8 @@ namespace clothsim
     double       end_time;  // s
     double       time_step; // s
     unsigned int max_step_halvings;
-    unsigned int load_steps; // static mode
+    unsigned int load_steps;          // static mode: initial (or fixed) increments
+    bool         adaptive_load_steps; // static mode: grow increments that converge fast
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -11,8 +11,11 @@
 
 #include "io/input_error.h"
 
+#include <deal.II/grid/manifold_lib.h>
+
 #include <algorithm>
 #include <limits>
+#include <set>
 
 namespace clothsim
 {
@@ -24,15 +27,39 @@ namespace clothsim
     : communicator(communicator)
     , parameters(parameters)
     , triangulation(communicator)
-    , fe(FE_SimplexP<2, 3>(1), 3)
+    , fe(parameters.material.bending
+           ? std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1), 3, FE_SimplexP<2, 3>(2), 1)
+           : std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1), 3))
     , mapping(FE_SimplexP<2, 3>(1))
     , pinned_displacement(3)
   {
     material.stretch_stiffness = parameters.material.stretch_stiffness;
     material.poisson_ratio     = parameters.material.poisson_ratio;
+    bending_material.rigidity      = parameters.material.bending_rigidity;
+    bending_material.poisson_ratio = parameters.material.poisson_ratio;
+    bending_material.director_function =
+      parameters.material.director_function == "sine"    ? physics::DirectorFunction::sine :
+      parameters.material.director_function == "tangent" ? physics::DirectorFunction::tangent :
+                                                            physics::DirectorFunction::angle;
+    if (!parameters.constraints.clamped_groups.empty() && !parameters.material.bending)
+      throw InputError(parameter_file,
+                       "Constraints/Clamped groups",
+                       "clamping holds the shell's rotation, which only exists with "
+                       "bending; set Material/Bending, or pin the group instead");
     build_mesh(serial_mesh);
     setup_dofs();
     resolve_pinned(parameter_file, groups);
+    resolve_loads(parameter_file, groups);
+  }
+
+
+  std::vector<std::string>
+  ClothModel::component_names(const std::string &displacement_name) const
+  {
+    std::vector<std::string> names(3, displacement_name);
+    if (has_bending())
+      names.push_back(displacement_name + "_director_angle");
+    return names;
   }
 
 
@@ -43,7 +70,20 @@ namespace clothsim
     // (deterministic), and keep only this rank's part plus a ghost layer.
     Triangulation<2, 3> refined;
     refined.copy_triangulation(serial_mesh);
+    // Curved rest surfaces: new vertices go onto the exact surface.
+    std::unique_ptr<Manifold<2, 3>> surface;
+    if (parameters.scene.surface == "cylinder")
+      surface = std::make_unique<CylindricalManifold<2, 3>>(parameters.scene.surface_axis,
+                                                            parameters.scene.surface_center);
+    else if (parameters.scene.surface == "sphere")
+      surface = std::make_unique<SphericalManifold<2, 3>>(parameters.scene.surface_center);
+    if (surface != nullptr)
+      {
+        refined.set_all_manifold_ids(1);
+        refined.set_manifold(1, *surface);
+      }
     refined.refine_global(parameters.scene.global_refinements);
+    refined.reset_all_manifolds();
     const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(communicator);
     if (n_ranks > 1)
       GridTools::partition_triangulation(n_ranks, refined);
@@ -54,39 +94,159 @@ namespace clothsim
   }
 
 
+  namespace
+  {
+    // Unit normal of a triangle with the given vertices.
+    Tensor<1, 3>
+    unit_normal(const Point<3> &x0, const Point<3> &x1, const Point<3> &x2)
+    {
+      const Tensor<1, 3> N = cross_product_3d(x1 - x0, x2 - x0);
+      return N / N.norm();
+    }
+
+    // A rank-independent order of vertices: lexicographic in the reference coordinates.
+    bool
+    precedes(const Point<3> &a, const Point<3> &b)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        if (a[d] != b[d])
+          return a[d] < b[d];
+      return false;
+    }
+  } // namespace
+
+
   void
   ClothModel::setup_dofs()
   {
     dof_handler.reinit(triangulation);
-    dof_handler.distribute_dofs(fe);
+    dof_handler.distribute_dofs(*fe);
     locally_owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
+    vertex_count = DoFTools::count_dofs_per_fe_component(dof_handler)[0];
 
-    // local dof -> (vertex, component); the P1 base element's dof k sits on vertex k.
-    local_dof_vertex_component.resize(fe.n_dofs_per_cell());
-    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+    // local dof -> (vertex, component) for the displacements (the P1 base element's dof
+    // k sits on vertex k); the angle component (4th) is handled in setup_edges().
+    local_dof_vertex_component.resize(fe->n_dofs_per_cell());
+    for (unsigned int i = 0; i < fe->n_dofs_per_cell(); ++i)
       {
-        const auto component_index    = fe.system_to_component_index(i);
+        const auto component_index    = fe->system_to_component_index(i);
         local_dof_vertex_component[i] = {component_index.second, component_index.first};
       }
 
-    std::vector<types::global_dof_index> dof_indices(fe.n_dofs_per_cell());
+    std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
     elements.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           cell->get_dof_indices(dof_indices);
           Element element;
-          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          for (unsigned int i = 0; i < fe->n_dofs_per_cell(); ++i)
             {
-              const auto [vertex, component]       = local_dof_vertex_component[i];
-              element.dofs[3 * vertex + component] = dof_indices[i];
+              const auto [vertex, component] = local_dof_vertex_component[i];
+              if (component < 3)
+                element.dofs[3 * vertex + component] = dof_indices[i];
             }
           for (unsigned int v = 0; v < 3; ++v)
             element.reference[v] = cell->vertex(v);
           element.rest = physics::membrane_rest_data(element.reference);
           elements.push_back(element);
         }
+    if (has_bending())
+      setup_edges();
+  }
+
+
+  void
+  ClothModel::setup_edges()
+  {
+    // The angle component's P2 dofs: k < 3 sits on vertex k (unused, constrained to
+    // zero), k >= 3 on line k - 3 of the cell.
+    std::map<types::global_dof_index, unsigned int> slot_of_dof;
+    std::set<types::global_dof_index>               unused;
+    std::vector<types::global_dof_index>            dof_indices(fe->n_dofs_per_cell());
+    edges.clear();
+    unsigned int e = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(dof_indices);
+          for (unsigned int i = 0; i < fe->n_dofs_per_cell(); ++i)
+            {
+              const auto [component, index] = fe->system_to_component_index(i);
+              if (component == 3 && index < 3)
+                unused.insert(dof_indices[i]);
+            }
+          if (!cell->is_locally_owned())
+            continue;
+
+          Element           &element = elements[e++];
+          const Tensor<1, 3> normal =
+            unit_normal(cell->vertex(0), cell->vertex(1), cell->vertex(2));
+          for (unsigned int i = 0; i < fe->n_dofs_per_cell(); ++i)
+            {
+              const auto [component, index] = fe->system_to_component_index(i);
+              if (component != 3 || index < 3)
+                continue;
+              const unsigned int line = index - 3;
+              // The triangle's edge opposite vertex v is this line.
+              unsigned int v = 0;
+              while (cell->vertex_index(v) == cell->line(line)->vertex_index(0) ||
+                     cell->vertex_index(v) == cell->line(line)->vertex_index(1))
+                ++v;
+              const unsigned int next = (v + 1) % 3, after = (v + 2) % 3;
+              const bool forward      = precedes(cell->vertex(next), cell->vertex(after));
+              element.angle_dofs[v]   = dof_indices[i];
+              element.edge_signs[v]   = forward ? 1. : -1.;
+
+              auto [slot, inserted] = slot_of_dof.emplace(dof_indices[i], edges.size());
+              element.edge_slots[v] = slot->second;
+              if (!inserted)
+                continue;
+              // Rest director: the bisector of the two rest normals, or the normal on
+              // the boundary (ψ̄ = 0 then gives the rest curvature B̄).
+              Edge edge;
+              edge.angle_dof = dof_indices[i];
+              const std::array<unsigned int, 2> ends =
+                forward ? std::array<unsigned int, 2>{{next, after}} :
+                          std::array<unsigned int, 2>{{after, next}};
+              for (unsigned int k = 0; k < 2; ++k)
+                {
+                  edge.reference_points[k] = cell->vertex(ends[k]);
+                  for (unsigned int c = 0; c < 3; ++c)
+                    edge.vertex_dofs[k][c] = element.dofs[3 * ends[k] + c];
+                }
+              edge.reference = normal;
+              if (!cell->at_boundary(line))
+                {
+                  const auto         neighbor = cell->neighbor(line);
+                  const Tensor<1, 3> bisector =
+                    normal + unit_normal(neighbor->vertex(0),
+                                         neighbor->vertex(1),
+                                         neighbor->vertex(2));
+                  AssertThrow(bisector.norm() > 1e-8,
+                              ExcMessage("two neighbouring triangles of the mesh are "
+                                         "folded onto each other"));
+                  edge.reference = bisector / bisector.norm();
+                }
+              edges.push_back(edge);
+            }
+        }
+    unused_dofs.clear();
+    for (const types::global_dof_index dof : unused)
+      unused_dofs.push_back(dof);
+
+    for (Element &element : elements)
+      {
+        physics::EdgeDirectors rest_directors;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            rest_directors.reference[i] = edges[element.edge_slots[i]].reference;
+            rest_directors.sign[i]      = element.edge_signs[i];
+          }
+        element.bending_rest =
+          physics::bending_rest_data(bending_material, element.reference, rest_directors);
+      }
   }
 
 
@@ -129,13 +289,36 @@ namespace clothsim
           }
         group_pins.push_back(pin);
       }
+    // Clamped groups: boundary lines whose vertices are fixed in every component.
+    std::set<types::boundary_id> clamped_ids;
+    for (const std::string &name : parameters.constraints.clamped_groups)
+      {
+        const auto line = groups.line_groups.find(name);
+        if (line == groups.line_groups.end())
+          {
+            std::string known;
+            for (const auto &[n, id] : groups.line_groups)
+              known += (known.empty() ? "" : ", ") + n;
+            throw InputError(parameter_file,
+                             "Constraints/Clamped groups",
+                             "the mesh has no boundary line group named '" + name +
+                               "' (its line groups: " + (known.empty() ? "none" : known) +
+                               ")");
+          }
+        GroupPin pin;
+        pin.components  = {{true, true, true}};
+        pin.boundary_id = line->second;
+        group_pins.push_back(pin);
+        clamped_ids.insert(line->second);
+      }
 
     // Matching tolerance for point groups: far below any edge length.
     const double tolerance =
       1e-8 * GridTools::diameter(dof_handler.get_triangulation().get_triangulation());
 
     std::map<types::global_dof_index, PinnedDof> found;
-    std::vector<types::global_dof_index>         dof_indices(fe.n_dofs_per_cell());
+    std::set<types::global_dof_index>            clamped_angles;
+    std::vector<types::global_dof_index>         dof_indices(fe->n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         {
@@ -165,11 +348,15 @@ namespace clothsim
                   pinned_here[v][c] =
                     pinned_here[v][c] || (vertex_in_group[v] && pin.components[c]);
             }
-          for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          for (unsigned int i = 0; i < fe->n_dofs_per_cell(); ++i)
             {
               const auto [vertex, component] = local_dof_vertex_component[i];
-              if (pinned_here[vertex][component])
+              if (component < 3 && pinned_here[vertex][component])
                 found[dof_indices[i]] = {dof_indices[i], component, cell->vertex(vertex)};
+              // The angle of a clamped boundary line (P2 line dof vertex - 3).
+              if (component == 3 && vertex >= 3 && cell->line(vertex - 3)->at_boundary() &&
+                  clamped_ids.count(cell->line(vertex - 3)->boundary_id()) > 0)
+                clamped_angles.insert(dof_indices[i]);
             }
         }
 
@@ -181,14 +368,21 @@ namespace clothsim
         pinned.push_back(pin);
         constraints.add_line(dof);
       }
+    for (const types::global_dof_index dof : clamped_angles)
+      constraints.add_line(dof);
+    for (const types::global_dof_index dof : unused_dofs)
+      constraints.add_line(dof);
     constraints.close();
+    for (Edge &edge : edges)
+      edge.clamped = clamped_angles.count(edge.angle_dof) > 0;
 
     // Every named pinned group must pin something somewhere.
-    if (!parameters.constraints.pinned_groups.empty() &&
+    if ((!parameters.constraints.pinned_groups.empty() ||
+         !parameters.constraints.clamped_groups.empty()) &&
         Utilities::MPI::sum(static_cast<unsigned int>(pinned.size()), communicator) == 0)
       throw InputError(parameter_file,
                        "Constraints/Pinned groups",
-                       "the named groups contain no mesh vertex");
+                       "the named pinned and clamped groups contain no mesh vertex");
 
     try
       {
@@ -323,6 +517,22 @@ namespace clothsim
   }
 
 
+  physics::EdgeDirectors
+  ClothModel::edge_directors(const Element       &element,
+                             const VectorType    &u,
+                             physics::EdgeAngles &psi) const
+  {
+    physics::EdgeDirectors directors;
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        directors.reference[i] = edges[element.edge_slots[i]].reference;
+        directors.sign[i]      = element.edge_signs[i];
+        psi[i]                 = u(element.angle_dofs[i]);
+      }
+    return directors;
+  }
+
+
   double
   ClothModel::assemble(const VectorType &u,
                        const StepTerms  &terms,
@@ -333,12 +543,13 @@ namespace clothsim
     const double rho    = parameters.material.areal_density;
     const double alpha  = parameters.damping.mass_proportional;
     const double beta   = parameters.damping.stiffness_proportional;
+    const bool   bending = has_bending();
     // Mass-like coefficient of the quadratic terms: w_i M + w_d α M.
     const double mass_weight = terms.inertia_weight + terms.damping_weight * alpha;
     // Projected tangent: compression in the geometric stiffness is kept down to what the
     // element's smallest mass eigenvalue m_min (ρ|T̄|/3 lumped, ρ|T̄|/12 consistent) pays
     // for, s_min = mass_weight m_min / (3|T̄|) (see membrane.h); the element Hessian stays
-    // PSD.
+    // PSD. The bending part of a projected tangent is its Gauss–Newton part (bending.h).
     const double stress_floor = terms.projected_tangent
                                   ? mass_weight * rho / (lumped ? 9. : 36.)
                                   : std::numeric_limits<double>::infinity();
@@ -353,12 +564,16 @@ namespace clothsim
     if (hessian != nullptr)
       *hessian = 0.;
 
+    const unsigned int                   n_local = bending ? 12 : 9;
     std::array<double, 9>                u_e, predictor_e, previous_e;
     physics::ElementVector               g_e;
     physics::ElementMatrix               H_e;
-    Vector<double>                       cell_vector(9);
-    FullMatrix<double>                   cell_matrix(9, 9);
-    std::vector<types::global_dof_index> dof_vector(9);
+    physics::BendingVector               g_b;
+    physics::BendingMatrix               H_b;
+    physics::EdgeAngles                  psi;
+    Vector<double>                       cell_vector(n_local);
+    FullMatrix<double>                   cell_matrix(n_local, n_local);
+    std::vector<types::global_dof_index> dof_vector(n_local);
     double                               value = 0.;
 
     for (unsigned int e = 0; e < elements.size(); ++e)
@@ -444,26 +659,161 @@ namespace clothsim
               }
           }
 
+        // Bending energy on positions and edge angles (12 local unknowns).
+        if (bending)
+          {
+            const physics::EdgeDirectors directors = edge_directors(element, u, psi);
+            if (gradient != nullptr || hessian != nullptr)
+              value += physics::bending_energy_gradient_hessian(
+                bending_material,
+                element.bending_rest,
+                x,
+                directors,
+                psi,
+                terms.projected_tangent,
+                g_b,
+                hessian != nullptr ? &H_b : nullptr);
+            else
+              value += physics::bending_energy(
+                bending_material, element.bending_rest, x, directors, psi);
+          }
+
         std::copy(element.dofs.begin(), element.dofs.end(), dof_vector.begin());
+        if (bending)
+          std::copy(element.angle_dofs.begin(), element.angle_dofs.end(), dof_vector.begin() + 9);
         if (gradient != nullptr)
           {
-            for (unsigned int i = 0; i < 9; ++i)
-              cell_vector[i] = g_e[i];
+            for (unsigned int i = 0; i < n_local; ++i)
+              cell_vector[i] = (i < 9 ? g_e[i] : 0.) + (bending ? g_b[i] : 0.);
             constraints.distribute_local_to_global(cell_vector, dof_vector, *gradient);
           }
         if (hessian != nullptr)
           {
-            for (unsigned int i = 0; i < 9; ++i)
-              for (unsigned int j = 0; j < 9; ++j)
-                cell_matrix(i, j) = H_e[i][j];
+            for (unsigned int i = 0; i < n_local; ++i)
+              for (unsigned int j = 0; j < n_local; ++j)
+                cell_matrix(i, j) =
+                  (i < 9 && j < 9 ? H_e[i][j] : 0.) + (bending ? H_b[i][j] : 0.);
             constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
           }
       }
+
+    // Point and line forces: -λ f_extᵀ u.
+    for (const types::global_dof_index i : locally_owned_dofs)
+      value -= terms.load_factor * external_forces[i] * u[i];
     if (gradient != nullptr)
-      gradient->compress(VectorOperation::add);
+      {
+        gradient->compress(VectorOperation::add);
+        gradient->add(-terms.load_factor, external_forces);
+      }
     if (hessian != nullptr)
-      hessian->compress(VectorOperation::add);
+      {
+        // Unit diagonal on the unused (constrained) angle-component dofs.
+        FullMatrix<double>                   unit(1, 1);
+        std::vector<types::global_dof_index> single(1);
+        unit(0, 0) = 1.;
+        for (const types::global_dof_index dof : unused_dofs)
+          if (locally_owned_dofs.is_element(dof))
+            {
+              single[0] = dof;
+              constraints.distribute_local_to_global(unit, single, *hessian);
+            }
+        hessian->compress(VectorOperation::add);
+      }
     return Utilities::MPI::sum(value, communicator);
+  }
+
+
+  void
+  ClothModel::rebase_directors(const VectorType &u_ghosted, VectorType &u, VectorType &v)
+  {
+    if (!has_bending())
+      return;
+    for (Edge &edge : edges)
+      {
+        if (edge.clamped)
+          continue;
+        std::array<Point<3>, 2> ends = edge.reference_points;
+        for (unsigned int k = 0; k < 2; ++k)
+          for (unsigned int c = 0; c < 3; ++c)
+            ends[k][c] += u_ghosted(edge.vertex_dofs[k][c]);
+        edge.reference = physics::edge_director(ends[0],
+                                                ends[1],
+                                                edge.reference,
+                                                u_ghosted(edge.angle_dof));
+        if (locally_owned_dofs.is_element(edge.angle_dof))
+          {
+            u[edge.angle_dof] = 0.;
+            v[edge.angle_dof] = 0.;
+          }
+      }
+    u.compress(VectorOperation::insert);
+    v.compress(VectorOperation::insert);
+  }
+
+
+  void
+  ClothModel::resolve_loads(const std::string      &parameter_file,
+                            const mesh::MeshGroups &groups)
+  {
+    initialize_owned(external_forces);
+    external_forces = 0.;
+    const double tolerance =
+      1e-8 * GridTools::diameter(dof_handler.get_triangulation().get_triangulation());
+
+    // Point forces: on every vertex of the point group (each vertex once).
+    for (const GroupLoad &load : parameters.loads.point_forces)
+      {
+        const auto group = groups.point_groups.find(load.name);
+        if (group == groups.point_groups.end())
+          throw InputError(parameter_file,
+                           "Loads/Point forces",
+                           "the mesh has no point group named '" + load.name + "'");
+        std::set<types::global_dof_index> loaded;
+        for (const Element &element : elements)
+          for (unsigned int v = 0; v < 3; ++v)
+            if (locally_owned_dofs.is_element(element.dofs[3 * v]))
+              for (const Point<3> &p : group->second)
+                if (element.reference[v].distance(p) < tolerance &&
+                    loaded.insert(element.dofs[3 * v]).second)
+                  for (unsigned int c = 0; c < 3; ++c)
+                    external_forces[element.dofs[3 * v + c]] += load.value[c];
+        if (Utilities::MPI::sum(static_cast<unsigned int>(loaded.size()), communicator) ==
+            0)
+          throw InputError(parameter_file,
+                           "Loads/Point forces",
+                           "the point group '" + load.name + "' holds no mesh vertex");
+      }
+    external_forces.compress(VectorOperation::add);
+
+    // Line forces: q ℓ/2 on each end of every boundary edge of the group.
+    for (const GroupLoad &load : parameters.loads.line_forces)
+      {
+        const auto group = groups.line_groups.find(load.name);
+        if (group == groups.line_groups.end())
+          throw InputError(parameter_file,
+                           "Loads/Line forces",
+                           "the mesh has no boundary line group named '" + load.name +
+                             "'");
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int f : cell->face_indices())
+              if (cell->face(f)->at_boundary() &&
+                  cell->face(f)->boundary_id() == types::boundary_id(group->second))
+                {
+                  const double length = cell->face(f)->vertex(0).distance(cell->face(f)->vertex(1));
+                  std::vector<types::global_dof_index> dofs;
+                  std::vector<double>                  values;
+                  for (unsigned int fv = 0; fv < 2; ++fv)
+                    for (unsigned int c = 0; c < 3; ++c)
+                      {
+                        dofs.push_back(cell->face(f)->vertex_dof_index(fv, c));
+                        values.push_back(0.5 * length * load.value[c]);
+                      }
+                  external_forces.add(dofs, values);
+                }
+      }
+    external_forces.compress(VectorOperation::add);
+    constraints.set_zero(external_forces);
   }
 
 
@@ -473,16 +823,39 @@ namespace clothsim
     forces = 0.;
     std::array<double, 9>  u_e;
     physics::ElementVector g_e;
-    std::vector<double>    values(9);
+    physics::BendingVector g_b;
+    physics::EdgeAngles    psi;
     for (const Element &element : elements)
       {
         const physics::TrianglePositions x = current_positions(element, u, u_e);
         physics::membrane_energy_gradient_hessian(
           material, element.rest, x, 0., g_e, nullptr);
-        std::copy(g_e.begin(), g_e.end(), values.begin());
-        forces.add(std::vector<types::global_dof_index>(element.dofs.begin(),
-                                                        element.dofs.end()),
-                   values);
+        std::vector<types::global_dof_index> dofs(element.dofs.begin(),
+                                                  element.dofs.end());
+        std::vector<double>                  values(g_e.begin(), g_e.end());
+        if (has_bending())
+          {
+            const physics::EdgeDirectors directors = edge_directors(element, u, psi);
+            physics::bending_energy_gradient_hessian(bending_material,
+                                                     element.bending_rest,
+                                                     x,
+                                                     directors,
+                                                     psi,
+                                                     true,
+                                                     g_b,
+                                                     nullptr);
+            for (unsigned int i = 0; i < 12; ++i)
+              {
+                if (i < 9)
+                  values[i] += g_b[i];
+                else
+                  {
+                    dofs.push_back(element.angle_dofs[i - 9]);
+                    values.push_back(g_b[i]);
+                  }
+              }
+          }
+        forces.add(dofs, values);
       }
     forces.compress(VectorOperation::add);
   }
@@ -494,12 +867,19 @@ namespace clothsim
     const bool            lumped = parameters.material.lumped_mass;
     const double          rho    = parameters.material.areal_density;
     std::array<double, 9> u_e, v_e;
+    physics::EdgeAngles   psi;
     Energies              local;
     for (const Element &element : elements)
       {
         const physics::TrianglePositions x = current_positions(element, u, u_e);
         gather(v, element.dofs, v_e);
         local.elastic += physics::membrane_energy(material, element.rest, x);
+        if (has_bending())
+          {
+            const physics::EdgeDirectors directors = edge_directors(element, u, psi);
+            local.elastic += physics::bending_energy(
+              bending_material, element.bending_rest, x, directors, psi);
+          }
         const double vertex_mass = rho * element.rest.area / 3.;
         for (unsigned int a = 0; a < 3; ++a)
           for (unsigned int d = 0; d < 3; ++d)
@@ -511,6 +891,8 @@ namespace clothsim
                                  v_e[3 * a + d] * v_e[3 * b + d];
             }
       }
+    for (const types::global_dof_index i : locally_owned_dofs)
+      local.potential -= external_forces[i] * u[i];
     Energies global;
     global.kinetic   = Utilities::MPI::sum(local.kinetic, communicator);
     global.elastic   = Utilities::MPI::sum(local.elastic, communicator);
@@ -553,6 +935,27 @@ namespace clothsim
             physics::membrane_strain_stress(material, element.rest, x);
           strain[cell->active_cell_index()] = measures.green_strain_norm;
           stress[cell->active_cell_index()] = measures.stress_norm;
+        }
+  }
+
+
+  void
+  ClothModel::cell_curvature_change(const VectorType &u, Vector<double> &curvature) const
+  {
+    curvature.reinit(triangulation.n_active_cells());
+    if (!has_bending())
+      return;
+    std::array<double, 9> u_e;
+    physics::EdgeAngles   psi;
+    unsigned int          e = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const Element                   &element = elements[e++];
+          const physics::TrianglePositions x       = current_positions(element, u, u_e);
+          const physics::EdgeDirectors directors = edge_directors(element, u, psi);
+          curvature[cell->active_cell_index()] = physics::curvature_change_norm(
+            bending_material, element.bending_rest, x, directors, psi);
         }
   }
 
@@ -606,7 +1009,7 @@ namespace clothsim
   }
 
 
-  std::vector<std::vector<double>>
+  NearNullSpace
   ClothModel::near_null_space() const
   {
     // Translations, plus the rotation about the sheet's mean normal n through its
@@ -653,7 +1056,7 @@ namespace clothsim
                   modes[3][i] = rotation[c];
               }
         }
-    return modes;
+    return {modes, has_bending() ? 1u : 3u};
   }
 
 

@@ -4,17 +4,21 @@
 // pinned vertices, and the incremental potential of one step assembled from the element
 // kernels.
 //
-// Unknowns: displacement u = x - X of every vertex (FE_SimplexP(1)^3). The finite element
-// is an FESystem whose local dofs are mapped to (vertex, component) once at set-up, so a
-// later director-angle component (FE_SimplexP(2) with its vertex dofs constrained; see
-// BENDING.md) adds entries to that map without changing assembly, constraints or output.
+// Unknowns: displacement u = x - X of every vertex (FE_SimplexP(1)^3) and, when the scene
+// has bending, one director angle ψ per edge (physics/bending.h): a fourth component
+// FE_SimplexP(2) whose vertex dofs are constrained to zero, which leaves exactly its one
+// dof per edge. The FESystem's local dofs are mapped to (vertex, component) and (edge)
+// once at set-up. Every edge keeps a reference vector r_E (its director at ψ = 0);
+// after each converged step the model re-bases r_E on the current director and sets ψ to
+// zero, so the angles stay small. Clamped edges keep ψ = 0 and their rest director.
 //
 // Incremental potential of a step (Gast & Schroeder 2014; backward Euler when w_i =
 // 1/dt²):
-//   Φ(u) = w_i/2 (u - û)ᵀ M (u - û) + W(u) - λ f_gᵀ u + w_d/2 (u - u_n)ᵀ (α M + β K_n) (u
-//   - u_n)
-// with M the mass matrix, W the membrane energy, f_g the gravity load, λ the load factor,
-// K_n the projected membrane tangent at the step's start. Its gradient is the residual
+//   Φ(u) = w_i/2 (u - û)ᵀ M (u - û) + W(u) - λ (f_g + f_ext)ᵀ u
+//          + w_d/2 (u - u_n)ᵀ (α M + β K_n) (u - u_n)
+// with M the mass matrix (none on ψ), W the membrane plus bending energy, f_g the gravity
+// load, f_ext the point and line forces, λ the load factor, K_n the projected membrane
+// tangent at the step's start. Its gradient is the residual
 // and its Hessian the tangent; all terms are sums over triangles, so one cell loop
 // assembles them.
 
@@ -31,7 +35,9 @@
 
 #include "io/parameters.h"
 #include "mesh/gmsh_reader.h"
+#include "physics/bending.h"
 #include "physics/membrane.h"
+#include "solvers/linear_solver.h"
 
 #include <array>
 #include <memory>
@@ -126,8 +132,16 @@ namespace clothsim
     unsigned int
     n_vertices() const
     {
-      return dof_handler.n_dofs() / 3;
+      return vertex_count;
     }
+    bool
+    has_bending() const
+    {
+      return parameters.material.bending;
+    }
+    // Names of the solution's components for output: displacement (3), director angle.
+    std::vector<std::string>
+    component_names(const std::string &displacement_name) const;
     unsigned int
     n_pinned_dofs() const;
 
@@ -142,6 +156,12 @@ namespace clothsim
     // Sets the pinned entries of `u` (owned) to the prescribed displacement at time t.
     void
     apply_pinned_displacement(const double time, VectorType &u) const;
+
+    // After a converged step: every unclamped edge's reference vector becomes its current
+    // director (from `u_ghosted`), and the angles in `u` and `v` (owned) become zero. A
+    // no-op without bending.
+    void
+    rebase_directors(const VectorType &u_ghosted, VectorType &u, VectorType &v);
 
     // Per-cell tangent K_n at the step's start for stiffness-proportional damping (no-op
     // if β=0).
@@ -176,6 +196,11 @@ namespace clothsim
                        Vector<double>   &strain,
                        Vector<double>   &stress) const;
 
+    // Per locally owned cell: norm of the curvature change |Ā⁻¹(b - B̄)| (1/m); zero
+    // without bending.
+    void
+    cell_curvature_change(const VectorType &u, Vector<double> &curvature) const;
+
     // Snaps each probe to the nearest vertex (the same on every rank).
     std::vector<ProbeLocation>
     locate_probes(const std::vector<Probe> &probes) const;
@@ -185,9 +210,9 @@ namespace clothsim
     gather_values(const VectorType                           &u,
                   const std::vector<types::global_dof_index> &dofs) const;
 
-    // AMG near-null space on the locally owned dofs: one constant (translation) mode per
-    // displacement component.
-    std::vector<std::vector<double>>
+    // AMG near-null space on the locally owned dofs: translations (and the in-plane
+    // rotation of a nearly planar sheet) on the displacements, zero on the angles.
+    NearNullSpace
     near_null_space() const;
 
     double
@@ -202,6 +227,23 @@ namespace clothsim
       std::array<types::global_dof_index, 9> dofs; // (vertex v, component c) at 3v + c
       physics::TrianglePositions             reference;
       physics::MembraneRestData              rest;
+      // With bending: edge i (opposite vertex i): its angle dof, its slot in `edges`,
+      // the sign s_i.
+      std::array<types::global_dof_index, 3> angle_dofs;
+      std::array<unsigned int, 3>            edge_slots;
+      std::array<double, 3>                  edge_signs;
+      physics::BendingRestData               bending_rest;
+    };
+
+    // One edge of a locally owned triangle, with its end points in global order (the
+    // lexicographic order of their reference positions, the same on every rank).
+    struct Edge
+    {
+      types::global_dof_index                               angle_dof;
+      std::array<std::array<types::global_dof_index, 3>, 2> vertex_dofs;
+      std::array<Point<3>, 2>                               reference_points;
+      Tensor<1, 3>                                          reference; // r_E
+      bool                                                  clamped = false;
     };
 
     void
@@ -209,7 +251,16 @@ namespace clothsim
     void
     setup_dofs();
     void
+    setup_edges();
+    void
     resolve_pinned(const std::string &parameter_file, const mesh::MeshGroups &groups);
+    void
+    resolve_loads(const std::string &parameter_file, const mesh::MeshGroups &groups);
+
+    // The element's edge directors (reference vectors, signs) and angles ψ from `u`.
+    physics::EdgeDirectors
+    edge_directors(const Element &element, const VectorType &u, physics::EdgeAngles &psi)
+      const;
 
     // Current vertex positions x = X + u of an element; u_e gets its displacements.
     physics::TrianglePositions
@@ -225,7 +276,7 @@ namespace clothsim
     MPI_Comm                                        communicator;
     const Parameters                               &parameters;
     parallel::fullydistributed::Triangulation<2, 3> triangulation;
-    FESystem<2, 3>                                  fe;
+    std::unique_ptr<FESystem<2, 3>>                 fe;
     MappingFE<2, 3>                                 mapping;
     DoFHandler<2, 3>                                dof_handler;
     IndexSet                                        locally_owned_dofs;
@@ -237,6 +288,14 @@ namespace clothsim
 
     std::vector<Element>      elements;
     physics::MembraneMaterial material;
+    physics::BendingMaterial  bending_material;
+    std::vector<Edge>         edges;
+    unsigned int              vertex_count = 0;
+    // Constrained-to-zero dofs that no element uses (the P2 vertex dofs of the angle
+    // component), owned here: the tangent gets a unit diagonal there.
+    std::vector<types::global_dof_index> unused_dofs;
+    // Point and line forces f_ext (owned, zero at pinned dofs), N.
+    VectorType external_forces;
 
     // Pinned dofs (locally relevant): dof, component, reference position of its vertex.
     struct PinnedDof

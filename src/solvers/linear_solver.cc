@@ -8,12 +8,12 @@
 
 namespace clothsim
 {
-  LinearSolver::LinearSolver(const LinearSolverParameters    &parameters,
-                             std::vector<std::vector<double>> near_null_space)
+  LinearSolver::LinearSolver(const LinearSolverParameters &parameters,
+                             NearNullSpace                 near_null_space)
     : parameters(parameters)
     , near_null_space(std::move(near_null_space))
   {
-    for (const std::vector<double> &mode : this->near_null_space)
+    for (const std::vector<double> &mode : this->near_null_space.modes)
       null_space_storage.insert(null_space_storage.end(), mode.begin(), mode.end());
   }
 
@@ -52,10 +52,11 @@ namespace clothsim
         data.set_parameters(ml_parameters,
                             unused_constant_modes,
                             matrix.trilinos_matrix());
-        ml_parameters.set("PDE equations", 3);
+        ml_parameters.set("PDE equations",
+                          static_cast<int>(near_null_space.pde_equations));
         ml_parameters.set("null space: type", "pre-computed");
         ml_parameters.set("null space: dimension",
-                          static_cast<int>(near_null_space.size()));
+                          static_cast<int>(near_null_space.modes.size()));
         ml_parameters.set("null space: vectors", null_space_storage.data());
         ml_parameters.set("null space: add default vectors", false);
         ml_parameters.set("smoother: Chebyshev alpha", parameters.amg_chebyshev_range);

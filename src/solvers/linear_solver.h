@@ -14,13 +14,19 @@
 
 namespace clothsim
 {
+  // The AMG near-null space: one vector per mode over the locally owned dofs, and the
+  // number of unknowns per mesh node ML may block together (3 for displacements only; 1
+  // when other unknowns, e.g. director angles, are interleaved with them).
+  struct NearNullSpace
+  {
+    std::vector<std::vector<double>> modes;
+    unsigned int                     pde_equations = 3;
+  };
+
   class LinearSolver
   {
   public:
-    // near_null_space: the AMG near-null space, one vector per mode over the locally
-    // owned dofs (here: one translation per displacement component).
-    LinearSolver(const LinearSolverParameters    &parameters,
-                 std::vector<std::vector<double>> near_null_space);
+    LinearSolver(const LinearSolverParameters &parameters, NearNullSpace near_null_space);
 
     // Builds the preconditioner for `matrix` (call after every new tangent).
     void
@@ -37,7 +43,7 @@ namespace clothsim
 
   private:
     const LinearSolverParameters           parameters;
-    const std::vector<std::vector<double>> near_null_space;
+    const NearNullSpace near_null_space;
     std::vector<double> null_space_storage; // the modes column-major, as ML reads them
     std::unique_ptr<TrilinosWrappers::PreconditionBase> preconditioner;
     // The AMG hierarchy, if `preconditioner` is one: later tangents reuse its aggregates.

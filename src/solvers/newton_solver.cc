@@ -311,7 +311,7 @@ namespace clothsim
 
   NewtonSolver::NewtonSolver(const NonlinearSolverParameters &nonlinear,
                              const LinearSolverParameters    &linear,
-                             std::vector<std::vector<double>> near_null_space,
+                             NearNullSpace                    near_null_space,
                              TrilinosWrappers::SparseMatrix  &tangent_matrix,
                              TimerOutput                     &timer)
     : parameters(nonlinear)

@@ -59,7 +59,7 @@ namespace clothsim
     // `tangent_matrix` must have the problem's sparsity; it is used as NOX's Jacobian.
     NewtonSolver(const NonlinearSolverParameters &nonlinear,
                  const LinearSolverParameters    &linear,
-                 std::vector<std::vector<double>> near_null_space,
+                 NearNullSpace                    near_null_space,
                  TrilinosWrappers::SparseMatrix  &tangent_matrix,
                  TimerOutput                     &timer);
 

@@ -133,8 +133,10 @@ namespace clothsim
   {
     const bool   dynamic = parameters.time.integrator == Integrator::backward_euler;
     const double end     = dynamic ? parameters.time.end_time : 1.;
-    const double nominal_step =
+    double nominal_step =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
+    const bool   adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;
+    const double largest_increment   = 4. / parameters.time.load_steps;
     const double       output_interval = dynamic ? parameters.output.interval : 0.;
     const unsigned int max_halvings    = parameters.time.max_step_halvings;
     const double       epsilon         = 1e-9 * nominal_step;
@@ -166,7 +168,7 @@ namespace clothsim
       {
         // One nominal step, in 2^k sub-steps if Newton needs smaller ones.
         const double target   = std::min(time + nominal_step, end);
-        unsigned int halvings = 0;
+        unsigned int halvings = 0, last_iterations = 0;
         while (time < target - epsilon)
           {
             const double dt =
@@ -179,6 +181,7 @@ namespace clothsim
             const NewtonResult result =
               solve_step(time_new, time_new - time, dynamic ? 1. : time_new);
             summary.newton_iterations += result.iterations;
+            last_iterations = result.iterations;
             summary.linear_iterations += result.linear_iterations;
             if (!result.converged)
               {
@@ -211,6 +214,9 @@ namespace clothsim
             u_n                   = u_new;
             time                  = time_new;
             ++step;
+            // Shell directors: re-base on the converged state (angles back to zero).
+            u_ghosted = u_n;
+            model.rebase_directors(u_ghosted, u_n, v_n);
             u_ghosted = u_n;
             v_ghosted = v_n;
             output.write_statistics({step,
@@ -234,6 +240,15 @@ namespace clothsim
             state << "step " << step << "  " << (dynamic ? "t = " : "load = ")
                   << std::setprecision(4) << time << (dynamic ? " s" : "");
             progress.update(time / end, state.str());
+          }
+        // Adaptive load increments: keep the size that worked, grow it when Newton had an
+        // easy time.
+        if (adaptive_increments)
+          {
+            if (halvings > 0)
+              nominal_step /= std::pow(2., halvings);
+            else if (last_iterations <= 4)
+              nominal_step = std::min(1.5 * nominal_step, largest_increment);
           }
       }
     progress.finish();

@@ -1,0 +1,357 @@
+#include "physics/bending.h"
+
+#include <Sacado.hpp>
+
+#include <cmath>
+
+namespace clothsim::physics
+{
+  namespace
+  {
+    // f, f', f'' of the director function at δ.
+    struct DirectorFunctionValues
+    {
+      double value, first, second;
+    };
+
+    DirectorFunctionValues
+    evaluate(const DirectorFunction function, const double delta)
+    {
+      switch (function)
+        {
+          case DirectorFunction::angle:
+            return {delta, 1., 0.};
+          case DirectorFunction::sine:
+            return {std::sin(delta), std::cos(delta), -std::sin(delta)};
+          case DirectorFunction::tangent:
+            {
+              const double t = std::tan(delta);
+              return {t, 1. + t * t, 2. * t * (1. + t * t)};
+            }
+        }
+      return {0., 0., 0.};
+    }
+
+    template <typename Number>
+    using Vec3 = std::array<Number, 3>;
+
+    template <typename Number>
+    Vec3<Number>
+    cross(const Vec3<Number> &a, const Vec3<Number> &b)
+    {
+      return {{a[1] * b[2] - a[2] * b[1],
+               a[2] * b[0] - a[0] * b[2],
+               a[0] * b[1] - a[1] * b[0]}};
+    }
+
+    // Altitudes h_i = |N|/ℓ_i and the position parts of the tilts, φ_i =
+    // atan2(N·(r_i × e_i)/ℓ_i, N·r_i), from the 9 vertex coordinates.
+    template <typename Number>
+    void
+    edge_geometry(const std::array<Number, 9>       &x,
+                  const std::array<Tensor<1, 3>, 3> &reference,
+                  std::array<Number, 3>             &altitude,
+                  std::array<Number, 3>             &tilt)
+    {
+      Vec3<Number> a1, a2;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          a1[d] = x[3 + d] - x[d];
+          a2[d] = x[6 + d] - x[d];
+        }
+      const Vec3<Number> N = cross(a1, a2);
+      using std::sqrt, std::atan2;
+      const Number norm_N = sqrt(N[0] * N[0] + N[1] * N[1] + N[2] * N[2]);
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          const unsigned int j = (i + 1) % 3, k = (i + 2) % 3;
+          Vec3<Number>       e;
+          for (unsigned int d = 0; d < 3; ++d)
+            e[d] = x[3 * k + d] - x[3 * j + d];
+          const Number length = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+          const Tensor<1, 3> &r = reference[i];
+          // r × e (linear in x), then N·(r × e) and N·r.
+          const Vec3<Number> r_cross_e = {{r[1] * e[2] - r[2] * e[1],
+                                           r[2] * e[0] - r[0] * e[2],
+                                           r[0] * e[1] - r[1] * e[0]}};
+          const Number       normal_part = N[0] * r[0] + N[1] * r[1] + N[2] * r[2];
+          const Number       conormal_part =
+            (N[0] * r_cross_e[0] + N[1] * r_cross_e[1] + N[2] * r_cross_e[2]) / length;
+          altitude[i] = norm_N / length;
+          tilt[i]     = atan2(conormal_part, normal_part);
+        }
+    }
+
+    std::array<double, 9>
+    coordinates(const TrianglePositions &x)
+    {
+      std::array<double, 9> c;
+      for (unsigned int v = 0; v < 3; ++v)
+        for (unsigned int d = 0; d < 3; ++d)
+          c[3 * v + d] = x[v][d];
+      return c;
+    }
+
+    // Edge curvatures II_i = 2 h_i f(δ_i).
+    std::array<double, 3>
+    edge_curvatures(const DirectorFunction   function,
+                    const TrianglePositions &x,
+                    const EdgeDirectors     &directors,
+                    const EdgeAngles        &psi)
+    {
+      std::array<double, 3> altitude, tilt, curvature;
+      edge_geometry(coordinates(x), directors.reference, altitude, tilt);
+      for (unsigned int i = 0; i < 3; ++i)
+        curvature[i] =
+          2. * altitude[i] *
+          evaluate(function, tilt[i] + directors.sign[i] * psi[i]).value;
+      return curvature;
+    }
+
+    // The 2×2 symmetric matrices B_k with b = Σ_k II_k B_k.
+    Tensor<2, 2>
+    curvature_basis(const unsigned int k)
+    {
+      Tensor<2, 2> B;
+      if (k == 0)
+        B[0][0] = B[0][1] = B[1][0] = B[1][1] = 1.;
+      else if (k == 1)
+        B[0][0] = 1.;
+      else
+        B[1][1] = 1.;
+      return B;
+    }
+  } // namespace
+
+
+  BendingRestData
+  bending_rest_data(const BendingMaterial   &material,
+                    const TrianglePositions &reference,
+                    const EdgeDirectors     &rest_directors)
+  {
+    BendingRestData       rest;
+    const Tensor<1, 3>    a1 = reference[1] - reference[0], a2 = reference[2] - reference[0];
+    const double          area = 0.5 * cross_product_3d(a1, a2).norm();
+    Tensor<2, 2>          metric;
+    metric[0][0] = a1 * a1;
+    metric[0][1] = metric[1][0] = a1 * a2;
+    metric[1][1]                = a2 * a2;
+    rest.inverse_metric         = invert(metric);
+
+    // C_kl = |T̄| D [ν tr(Q B_k) tr(Q B_l) + (1-ν) tr(Q B_k Q B_l)], Q = Ā⁻¹.
+    const double nu = material.poisson_ratio;
+    for (unsigned int k = 0; k < 3; ++k)
+      for (unsigned int l = 0; l < 3; ++l)
+        {
+          const Tensor<2, 2> QB_k = rest.inverse_metric * curvature_basis(k);
+          const Tensor<2, 2> QB_l = rest.inverse_metric * curvature_basis(l);
+          rest.stiffness[k][l] =
+            area * material.rigidity *
+            (nu * trace(QB_k) * trace(QB_l) + (1. - nu) * trace(QB_k * QB_l));
+        }
+    rest.rest_edge_curvature = edge_curvatures(material.director_function,
+                                               reference,
+                                               rest_directors,
+                                               {{0., 0., 0.}});
+    return rest;
+  }
+
+
+  std::array<double, 3>
+  director_tilts(const TrianglePositions &x,
+                 const EdgeDirectors     &directors,
+                 const EdgeAngles        &psi)
+  {
+    std::array<double, 3> altitude, tilt;
+    edge_geometry(coordinates(x), directors.reference, altitude, tilt);
+    for (unsigned int i = 0; i < 3; ++i)
+      tilt[i] += directors.sign[i] * psi[i];
+    return tilt;
+  }
+
+
+  double
+  bending_energy(const BendingMaterial   &material,
+                 const BendingRestData   &rest,
+                 const TrianglePositions &x,
+                 const EdgeDirectors     &directors,
+                 const EdgeAngles        &psi)
+  {
+    const std::array<double, 3> II =
+      edge_curvatures(material.director_function, x, directors, psi);
+    double energy = 0.;
+    for (unsigned int k = 0; k < 3; ++k)
+      for (unsigned int l = 0; l < 3; ++l)
+        energy += 0.5 * (II[k] - rest.rest_edge_curvature[k]) * rest.stiffness[k][l] *
+                  (II[l] - rest.rest_edge_curvature[l]);
+    return energy;
+  }
+
+
+  double
+  bending_energy_gradient_hessian(const BendingMaterial   &material,
+                                  const BendingRestData   &rest,
+                                  const TrianglePositions &x,
+                                  const EdgeDirectors     &directors,
+                                  const EdgeAngles        &psi,
+                                  const bool               gauss_newton,
+                                  BendingVector           &gradient,
+                                  BendingMatrix           *hessian)
+  {
+    // h_i and φ_i with their first and (if a Hessian is wanted) second derivatives in
+    // the 9 coordinates.
+    std::array<double, 3>                             h, phi;
+    std::array<std::array<double, 9>, 3>              dh, dphi;
+    std::array<std::array<std::array<double, 9>, 9>, 3> ddh{}, ddphi{};
+    const std::array<double, 9>                       c = coordinates(x);
+    const bool exact_hessian = hessian != nullptr && !gauss_newton;
+    if (exact_hessian)
+      {
+        using Inner = Sacado::Fad::SFad<double, 9>;
+        using Outer = Sacado::Fad::SFad<Inner, 9>;
+        std::array<Outer, 9> xs;
+        for (unsigned int j = 0; j < 9; ++j)
+          xs[j] = Outer(9, j, Inner(9, j, c[j]));
+        std::array<Outer, 3> altitude, tilt;
+        edge_geometry(xs, directors.reference, altitude, tilt);
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            h[i]   = altitude[i].val().val();
+            phi[i] = tilt[i].val().val();
+            for (unsigned int j = 0; j < 9; ++j)
+              {
+                dh[i][j]   = altitude[i].dx(j).val();
+                dphi[i][j] = tilt[i].dx(j).val();
+                for (unsigned int k = 0; k < 9; ++k)
+                  {
+                    ddh[i][j][k]   = altitude[i].dx(j).dx(k);
+                    ddphi[i][j][k] = tilt[i].dx(j).dx(k);
+                  }
+              }
+          }
+      }
+    else
+      {
+        using Number = Sacado::Fad::SFad<double, 9>;
+        std::array<Number, 9> xs;
+        for (unsigned int j = 0; j < 9; ++j)
+          xs[j] = Number(9, j, c[j]);
+        std::array<Number, 3> altitude, tilt;
+        edge_geometry(xs, directors.reference, altitude, tilt);
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            h[i]   = altitude[i].val();
+            phi[i] = tilt[i].val();
+            for (unsigned int j = 0; j < 9; ++j)
+              {
+                dh[i][j]   = altitude[i].dx(j);
+                dphi[i][j] = tilt[i].dx(j);
+              }
+          }
+      }
+
+    // II_i = 2 h_i f(δ_i) and its gradient in the 12 unknowns.
+    std::array<double, 3>                 II, II_minus_rest;
+    std::array<DirectorFunctionValues, 3> f;
+    std::array<BendingVector, 3>          dII{};
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        f[i]             = evaluate(material.director_function,
+                        phi[i] + directors.sign[i] * psi[i]);
+        II[i]            = 2. * h[i] * f[i].value;
+        II_minus_rest[i] = II[i] - rest.rest_edge_curvature[i];
+        for (unsigned int j = 0; j < 9; ++j)
+          dII[i][j] = 2. * (f[i].value * dh[i][j] + h[i] * f[i].first * dphi[i][j]);
+        dII[i][9 + i] = 2. * h[i] * f[i].first * directors.sign[i];
+      }
+
+    // g = C (II - ĪI): the work-conjugate of each edge curvature.
+    std::array<double, 3> g{};
+    double                energy = 0.;
+    for (unsigned int k = 0; k < 3; ++k)
+      {
+        for (unsigned int l = 0; l < 3; ++l)
+          g[k] += rest.stiffness[k][l] * II_minus_rest[l];
+        energy += 0.5 * II_minus_rest[k] * g[k];
+      }
+
+    gradient.fill(0.);
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int j = 0; j < 12; ++j)
+        gradient[j] += g[i] * dII[i][j];
+
+    if (hessian == nullptr)
+      return energy;
+
+    // Gauss–Newton part Σ_ik C_ik ∇II_i ∇II_kᵀ.
+    BendingMatrix &H = *hessian;
+    std::array<BendingVector, 3> C_dII{};
+    for (unsigned int i = 0; i < 3; ++i)
+      for (unsigned int k = 0; k < 3; ++k)
+        for (unsigned int j = 0; j < 12; ++j)
+          C_dII[i][j] += rest.stiffness[i][k] * dII[k][j];
+    for (unsigned int a = 0; a < 12; ++a)
+      for (unsigned int b = 0; b < 12; ++b)
+        {
+          double sum = 0.;
+          for (unsigned int i = 0; i < 3; ++i)
+            sum += dII[i][a] * C_dII[i][b];
+          H[a][b] = sum;
+        }
+    if (gauss_newton)
+      return energy;
+
+    // Curvature part Σ_i g_i ∇²II_i with
+    //   ∇²II_i = 2 [f ∇²h + f' (∇h ∇φᵀ + ∇φ ∇hᵀ) + h f'' ∇φ ∇φᵀ + h f' ∇²φ]  (positions)
+    //   ∂²II_i/∂x∂ψ_i = 2 s_i [f' ∇h + h f'' ∇φ],   ∂²II_i/∂ψ_i² = 2 h f''.
+    for (unsigned int i = 0; i < 3; ++i)
+      {
+        const double w = 2. * g[i];
+        const auto  &fi = f[i];
+        for (unsigned int a = 0; a < 9; ++a)
+          {
+            for (unsigned int b = 0; b < 9; ++b)
+              H[a][b] += w * (fi.value * ddh[i][a][b] +
+                              fi.first * (dh[i][a] * dphi[i][b] + dphi[i][a] * dh[i][b]) +
+                              h[i] * fi.second * dphi[i][a] * dphi[i][b] +
+                              h[i] * fi.first * ddphi[i][a][b]);
+            const double mixed =
+              w * directors.sign[i] * (fi.first * dh[i][a] + h[i] * fi.second * dphi[i][a]);
+            H[a][9 + i] += mixed;
+            H[9 + i][a] += mixed;
+          }
+        H[9 + i][9 + i] += w * h[i] * fi.second;
+      }
+    return energy;
+  }
+
+
+  double
+  curvature_change_norm(const BendingMaterial   &material,
+                        const BendingRestData   &rest,
+                        const TrianglePositions &x,
+                        const EdgeDirectors     &directors,
+                        const EdgeAngles        &psi)
+  {
+    const std::array<double, 3> II =
+      edge_curvatures(material.director_function, x, directors, psi);
+    Tensor<2, 2> db;
+    for (unsigned int k = 0; k < 3; ++k)
+      db += (II[k] - rest.rest_edge_curvature[k]) * curvature_basis(k);
+    const Tensor<2, 2> M = rest.inverse_metric * db;
+    return std::sqrt(std::abs(trace(M * M)));
+  }
+
+
+  Tensor<1, 3>
+  edge_director(const Point<3>     &first,
+                const Point<3>     &second,
+                const Tensor<1, 3> &reference,
+                const double        psi)
+  {
+    const Tensor<1, 3> edge = (second - first) / (second - first).norm();
+    const Tensor<1, 3> p    = reference - (reference * edge) * edge;
+    const Tensor<1, 3> d = std::cos(psi) * p + std::sin(psi) * cross_product_3d(edge, p);
+    return d / p.norm();
+  }
+} // namespace clothsim::physics
