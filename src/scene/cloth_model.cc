@@ -724,7 +724,7 @@ namespace clothsim
 
 
   void
-  ClothModel::rebase_directors(const VectorType &u_ghosted, VectorType &u, VectorType &v)
+  ClothModel::rebase_directors(const VectorType &u_ghosted, VectorType &u)
   {
     if (!has_bending())
       return;
@@ -741,13 +741,9 @@ namespace clothsim
                                                 edge.reference,
                                                 u_ghosted(edge.angle_dof));
         if (locally_owned_dofs.is_element(edge.angle_dof))
-          {
-            u[edge.angle_dof] = 0.;
-            v[edge.angle_dof] = 0.;
-          }
+          u[edge.angle_dof] = 0.;
       }
     u.compress(VectorOperation::insert);
-    v.compress(VectorOperation::insert);
   }
 
 

@@ -158,10 +158,11 @@ namespace clothsim
     apply_pinned_displacement(const double time, VectorType &u) const;
 
     // After a converged step: every unclamped edge's reference vector becomes its current
-    // director (from `u_ghosted`), and the angles in `u` and `v` (owned) become zero. A
-    // no-op without bending.
+    // director (from `u_ghosted`), and the angles in `u` (owned) become zero. A no-op
+    // without bending. (Angle rates stay: relative to the new references they still
+    // predict the next step's rotation.)
     void
-    rebase_directors(const VectorType &u_ghosted, VectorType &u, VectorType &v);
+    rebase_directors(const VectorType &u_ghosted, VectorType &u);
 
     // Per-cell tangent K_n at the step's start for stiffness-proportional damping (no-op
     // if β=0).

@@ -78,6 +78,7 @@ namespace clothsim
     model.initialize_owned(u_n);
     model.initialize_owned(v_n);
     model.initialize_owned(u_new);
+    model.initialize_owned(last_increment);
     model.initialize_ghosted(u_ghosted);
     model.initialize_ghosted(v_ghosted);
     model.initialize_ghosted(u_n_ghosted);
@@ -106,7 +107,14 @@ namespace clothsim
         u_new             = predictor;
       }
     else
-      u_new = u_n;
+      {
+        // Secant predictor along the load path (angles included: the last increment's
+        // angles are the director rotation it took, relative to the re-based
+        // references).
+        u_new = u_n;
+        if (last_load_increment > 0.)
+          u_new.add(dt / last_load_increment, last_increment);
+      }
     model.apply_pinned_displacement(dynamic ? time_new : load_factor, u_new);
 
     StepProblem  problem(model, terms, timer);
@@ -211,12 +219,15 @@ namespace clothsim
                 v_n /= (time_new - time);
               }
             const double dt_taken = time_new - time;
-            u_n                   = u_new;
+            last_increment        = u_new;
+            last_increment -= u_n;
+            last_load_increment = dt_taken;
+            u_n                 = u_new;
             time                  = time_new;
             ++step;
             // Shell directors: re-base on the converged state (angles back to zero).
             u_ghosted = u_n;
-            model.rebase_directors(u_ghosted, u_n, v_n);
+            model.rebase_directors(u_ghosted, u_n);
             u_ghosted = u_n;
             v_ghosted = v_n;
             output.write_statistics({step,

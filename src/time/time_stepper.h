@@ -4,8 +4,8 @@
 // cut the step, write output. Backward Euler (Gast & Schroeder 2014's optimisation form):
 //   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} =
 //   (u_{n+1} - u_n)/dt.
-// Static mode: the load factor λ goes 1/N, 2/N, ..., 1; each increment minimises W - λ
-// f_gᵀ u. A step whose Newton solve fails (or whose result holds NaN or a collapsed
+// Static mode: the load factor λ goes 1/N, 2/N, ..., 1 (or adaptive increments); each
+// increment minimises W - λ fᵀ u, starting from the secant predictor along the load path. A step whose Newton solve fails (or whose result holds NaN or a collapsed
 // triangle) is retried with half the step, up to 'Maximum step halvings' times, and the
 // log says so.
 
@@ -72,6 +72,10 @@ namespace clothsim
     NewtonSolver newton;
 
     VectorType u_n, v_n, u_new;                                      // owned
+    // Static mode: the last load increment's displacement change and size, for the
+    // secant predictor u_n + (Δλ/Δλ_last) Δu_last.
+    VectorType last_increment; // owned
+    double     last_load_increment = 0.;
     VectorType u_ghosted, v_ghosted, u_n_ghosted, predictor_ghosted; // ghosted
   };
 } // namespace clothsim
