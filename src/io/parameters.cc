@@ -529,7 +529,15 @@ namespace clothsim
       "cg",
       Patterns::Selection(solver_methods),
       "Krylov method for each Newton step: 'cg' (needs the projected tangent), "
-      "'gmres', or 'direct' (Amesos KLU; small systems).");
+      "'gmres', or 'direct' (a sparse LU factorisation, see 'Direct solver').");
+    prm.declare_entry(
+      "Direct solver",
+      "mumps",
+      Patterns::Selection("mumps|klu"),
+      "Sparse direct solver behind 'Method = direct' (through Amesos): 'mumps' "
+      "(multifrontal, nested-dissection ordering, distributed; fast on large "
+      "meshes) or 'klu' (serial, no fill-reducing ordering for 2D meshes; small "
+      "systems).");
     prm.declare_entry(
       "Preconditioner",
       "amg",
@@ -582,6 +590,7 @@ namespace clothsim
   {
     prm.enter_subsection("Linear solver");
     method                    = prm.get("Method");
+    direct_solver             = prm.get("Direct solver");
     preconditioner            = prm.get("Preconditioner");
     relative_tolerance        = prm.get_double("Relative tolerance");
     max_iterations            = prm.get_integer("Maximum iterations");

@@ -138,6 +138,7 @@ namespace clothsim
   struct LinearSolverParameters
   {
     std::string  method;         // "cg", "gmres", "direct"
+    std::string  direct_solver;  // "klu", "mumps"
     std::string  preconditioner; // "amg", "jacobi"
     double       relative_tolerance;
     unsigned int max_iterations;

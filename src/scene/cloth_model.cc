@@ -1052,7 +1052,20 @@ namespace clothsim
                   modes[3][i] = rotation[c];
               }
         }
-    return {modes, has_bending() ? 1u : 3u};
+    NearNullSpace space{modes, 3u, IndexSet(), IndexSet(), IndexSet()};
+    if (has_bending())
+      {
+        // Displacements and angles interleave: AMG gets the displacement block alone.
+        space.displacement_dofs = IndexSet(dof_handler.n_dofs());
+        for (const Element &element : elements)
+          for (const types::global_dof_index dof : element.dofs)
+            if (locally_owned_dofs.is_element(dof))
+              space.displacement_dofs.add_index(dof);
+        space.displacement_dofs.compress();
+        space.owned_dofs    = locally_owned_dofs;
+        space.relevant_dofs = locally_relevant_dofs;
+      }
+    return space;
   }
 
 

@@ -1,6 +1,8 @@
 #include "solvers/linear_solver.h"
 
+#include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_solver.h>
 
 #include <Epetra_MultiVector.h>
@@ -13,8 +15,17 @@ namespace clothsim
     : parameters(parameters)
     , near_null_space(std::move(near_null_space))
   {
-    for (const std::vector<double> &mode : this->near_null_space.modes)
-      null_space_storage.insert(null_space_storage.end(), mode.begin(), mode.end());
+    const NearNullSpace &space = this->near_null_space;
+    if (space.displacement_dofs.size() > 0)
+      {
+        // Block mode: the modes restricted to the displacement dofs, in their order.
+        for (const std::vector<double> &mode : space.modes)
+          for (const types::global_dof_index dof : space.displacement_dofs)
+            null_space_storage.push_back(mode[space.owned_dofs.index_within_set(dof)]);
+      }
+    else
+      for (const std::vector<double> &mode : space.modes)
+        null_space_storage.insert(null_space_storage.end(), mode.begin(), mode.end());
   }
 
 
@@ -27,7 +38,8 @@ namespace clothsim
     // stiffness) stop fitting as the sheet deforms: reuse them only while CG needs at
     // most 30 % more iterations than right after they were built.
     const bool aggregates_fit = last_iterations <= 1.3 * iterations_after_rebuild + 1;
-    if (parameters.preconditioner == "amg" && amg != nullptr &&
+    const bool block_mode = near_null_space.displacement_dofs.size() > 0;
+    if (parameters.preconditioner == "amg" && amg != nullptr && !block_mode &&
         parameters.amg_reuse_aggregates && aggregates_fit)
       {
         // Same sparsity, new entries: keep the aggregates, rebuild the smoothed
@@ -53,7 +65,7 @@ namespace clothsim
                             unused_constant_modes,
                             matrix.trilinos_matrix());
         ml_parameters.set("PDE equations",
-                          static_cast<int>(near_null_space.pde_equations));
+                          static_cast<int>(block_mode ? 3 : near_null_space.pde_equations));
         ml_parameters.set("null space: type", "pre-computed");
         ml_parameters.set("null space: dimension",
                           static_cast<int>(near_null_space.modes.size()));
@@ -62,6 +74,17 @@ namespace clothsim
         ml_parameters.set("smoother: Chebyshev alpha", parameters.amg_chebyshev_range);
         ml_parameters.set("coarse: max size",
                           static_cast<int>(parameters.amg_coarse_size));
+        if (block_mode)
+          {
+            if (!block_preconditioner)
+              block_preconditioner =
+                std::make_unique<BlockPreconditioner>(near_null_space.owned_dofs,
+                                                      near_null_space.relevant_dofs,
+                                                      near_null_space.displacement_dofs,
+                                                      matrix.get_mpi_communicator());
+            block_preconditioner->initialize(matrix, ml_parameters);
+            return;
+          }
         auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
         amg->initialize(matrix, ml_parameters);
         this->amg            = amg.get();
@@ -98,14 +121,28 @@ namespace clothsim
       {
         if (parameters.method == "direct")
           {
-            TrilinosWrappers::SolverDirect::AdditionalData data(false, "Amesos_Klu");
+            TrilinosWrappers::SolverDirect::AdditionalData data(false, parameters.direct_solver == "mumps" ? "Amesos_Mumps" : "Amesos_Klu");
             TrilinosWrappers::SolverDirect                 direct(control, data);
             direct.solve(matrix, x, b);
             iterations = 1;
             return true;
           }
-        Assert(preconditioner, ExcMessage("update_preconditioner() was not called"));
-        if (parameters.method == "cg")
+        if (block_preconditioner && parameters.preconditioner == "amg")
+          {
+            if (parameters.method == "cg")
+              {
+                SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
+                cg.solve(matrix, x, b, *block_preconditioner);
+              }
+            else
+              {
+                SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+                  control,
+                  SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(100));
+                gmres.solve(matrix, x, b, *block_preconditioner);
+              }
+          }
+        else if (parameters.method == "cg")
           {
             TrilinosWrappers::SolverCG cg(control);
             cg.solve(matrix, x, b, *preconditioner);

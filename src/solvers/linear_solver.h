@@ -8,6 +8,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include "io/parameters.h"
+#include "solvers/block_preconditioner.h"
 
 #include <memory>
 #include <vector>
@@ -21,6 +22,10 @@ namespace clothsim
   {
     std::vector<std::vector<double>> modes;
     unsigned int                     pde_equations = 3;
+    // If some owned dofs are not displacements (director angles): the owned
+    // displacement dofs, and the tangent's owned and relevant dofs. AMG then works on
+    // the displacement block alone (BlockPreconditioner).
+    IndexSet displacement_dofs, owned_dofs, relevant_dofs;
   };
 
   class LinearSolver
@@ -48,6 +53,8 @@ namespace clothsim
     std::unique_ptr<TrilinosWrappers::PreconditionBase> preconditioner;
     // The AMG hierarchy, if `preconditioner` is one: later tangents reuse its aggregates.
     TrilinosWrappers::PreconditionAMG *amg = nullptr;
+    // With director angles: AMG on the displacement block, Jacobi on the angles.
+    std::unique_ptr<BlockPreconditioner> block_preconditioner;
     // CG iterations of the last solve, and of the first solve after the aggregates were
     // built.
     mutable unsigned int last_iterations          = 0;

@@ -1,0 +1,135 @@
+#include "solvers/block_preconditioner.h"
+
+#include <deal.II/base/mpi.h>
+
+#include <Epetra_Map.h>
+
+namespace clothsim
+{
+  BlockPreconditioner::BlockPreconditioner(const IndexSet &owned_dofs,
+                                           const IndexSet &relevant_dofs,
+                                           const IndexSet &displacement_dofs,
+                                           const MPI_Comm  communicator)
+    : communicator(communicator)
+    , owned(owned_dofs)
+  {
+    // The displacement block's numbering: this rank's displacements, in dof order, form
+    // one contiguous range after those of the lower ranks.
+    const unsigned long long n_local = displacement_dofs.n_elements();
+    unsigned long long       offset  = 0;
+    MPI_Exscan(&n_local, &offset, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, communicator);
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      offset = 0;
+    const unsigned long long n_total = Utilities::MPI::sum(n_local, communicator);
+    block_owned                      = IndexSet(n_total);
+    block_owned.add_range(offset, offset + n_local);
+    block_owned.compress();
+
+    TrilinosWrappers::MPI::Vector block_index_owned(owned, communicator);
+    for (const types::global_dof_index dof : owned)
+      {
+        if (displacement_dofs.is_element(dof))
+          {
+            block_index_owned[dof] = offset + displacement_local.size();
+            displacement_local.push_back(owned.index_within_set(dof));
+          }
+        else
+          {
+            block_index_owned[dof] = -1.;
+            other_local.push_back(owned.index_within_set(dof));
+          }
+      }
+    block_index_owned.compress(VectorOperation::insert);
+    block_index_ghosted.reinit(owned, relevant_dofs, communicator);
+    block_index_ghosted = block_index_owned;
+    block_src.reinit(block_owned, communicator);
+    block_dst.reinit(block_owned, communicator);
+  }
+
+
+  long long
+  BlockPreconditioner::block_index(const types::global_dof_index dof) const
+  {
+    return owned.is_element(dof) ? static_cast<long long>(block_index_ghosted(dof)) : -1;
+  }
+
+
+  void
+  BlockPreconditioner::initialize(const TrilinosWrappers::SparseMatrix &matrix,
+                                  const Teuchos::ParameterList         &ml_parameters)
+  {
+    const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
+    const Epetra_Map        map =
+      block_owned.make_trilinos_map(communicator, /*overlapping=*/false);
+    const int first_row = block_owned.n_elements() > 0 ? *block_owned.begin() : 0;
+
+    // K_uu: the displacement rows, restricted to displacement columns.
+    std::vector<int> row_lengths(displacement_local.size());
+    for (unsigned int k = 0; k < displacement_local.size(); ++k)
+      row_lengths[k] = A.NumMyEntries(displacement_local[k]);
+    block_matrix = std::make_unique<Epetra_CrsMatrix>(Copy, map, row_lengths.data(), true);
+    std::vector<int>    columns;
+    std::vector<double> entries;
+    for (unsigned int k = 0; k < displacement_local.size(); ++k)
+      {
+        int     n;
+        double *values;
+        int    *indices;
+        A.ExtractMyRowView(displacement_local[k], n, values, indices);
+        columns.clear();
+        entries.clear();
+        for (int e = 0; e < n; ++e)
+          {
+            const double column = block_index_ghosted(A.ColMap().GID(indices[e]));
+            if (column >= 0.)
+              {
+                columns.push_back(static_cast<int>(column));
+                entries.push_back(values[e]);
+              }
+          }
+        const int row = first_row + k;
+        block_matrix->InsertGlobalValues(row, columns.size(), entries.data(), columns.data());
+      }
+    block_matrix->FillComplete();
+
+    // Jacobi on the rest.
+    other_inverse_diagonal.resize(other_local.size());
+    for (unsigned int k = 0; k < other_local.size(); ++k)
+      {
+        int     n;
+        double *values;
+        int    *indices;
+        A.ExtractMyRowView(other_local[k], n, values, indices);
+        const int row_gid  = A.RowMap().GID(other_local[k]);
+        double    diagonal = 0.;
+        for (int e = 0; e < n; ++e)
+          if (A.ColMap().GID(indices[e]) == row_gid)
+            diagonal = values[e];
+        AssertThrow(diagonal > 0.,
+                    ExcMessage("the tangent has a non-positive diagonal entry on a "
+                               "director angle"));
+        other_inverse_diagonal[k] = 1. / diagonal;
+      }
+
+    amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    amg->initialize(*block_matrix, ml_parameters);
+  }
+
+
+  void
+  BlockPreconditioner::vmult(TrilinosWrappers::MPI::Vector       &dst,
+                             const TrilinosWrappers::MPI::Vector &src) const
+  {
+    const Epetra_Vector &s  = *src.trilinos_vector()(0);
+    Epetra_Vector       &d  = *dst.trilinos_vector()(0);
+    Epetra_Vector       &bs = *block_src.trilinos_vector()(0);
+    Epetra_Vector       &bd = *block_dst.trilinos_vector()(0);
+    for (unsigned int k = 0; k < displacement_local.size(); ++k)
+      bs[k] = s[displacement_local[k]];
+    amg->vmult(block_dst, block_src);
+    for (unsigned int k = 0; k < displacement_local.size(); ++k)
+      d[displacement_local[k]] = bd[k];
+    for (unsigned int k = 0; k < other_local.size(); ++k)
+      d[other_local[k]] = other_inverse_diagonal[k] * s[other_local[k]];
+  }
+} // namespace clothsim
