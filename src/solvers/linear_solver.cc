@@ -5,6 +5,7 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/trilinos_solver.h>
 
+#include <Amesos.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
@@ -33,7 +34,29 @@ namespace clothsim
   LinearSolver::update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix)
   {
     if (parameters.method == "direct")
-      return;
+      {
+        // The tangent is symmetric (constraints are applied symmetrically): LDLᵀ.
+        if (!direct_solver)
+          {
+            direct_problem = std::make_unique<Epetra_LinearProblem>();
+            direct_problem->SetOperator(
+              const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
+            Amesos factory;
+            direct_solver.reset(factory.Create(
+              parameters.direct_solver == "mumps" ? "Amesos_Mumps" : "Amesos_Klu",
+              *direct_problem));
+            AssertThrow(direct_solver != nullptr,
+                        ExcMessage("this Trilinos has no " + parameters.direct_solver));
+            Teuchos::ParameterList amesos_parameters;
+            if (parameters.direct_solver == "mumps")
+              amesos_parameters.set("MatrixProperty", "symmetric");
+            direct_solver->SetParameters(amesos_parameters);
+            AssertThrow(direct_solver->SymbolicFactorization() == 0,
+                        ExcMessage("symbolic factorisation failed"));
+          }
+        factorization_ok = direct_solver->NumericFactorization() == 0;
+        return;
+      }
     // Aggregates built from an early tangent (the unstressed sheet has no out-of-plane
     // stiffness) stop fitting as the sheet deforms: reuse them only while CG needs at
     // most 30 % more iterations than right after they were built.
@@ -121,11 +144,16 @@ namespace clothsim
       {
         if (parameters.method == "direct")
           {
-            TrilinosWrappers::SolverDirect::AdditionalData data(false, parameters.direct_solver == "mumps" ? "Amesos_Mumps" : "Amesos_Klu");
-            TrilinosWrappers::SolverDirect                 direct(control, data);
-            direct.solve(matrix, x, b);
+            Assert(direct_problem->GetOperator() == &matrix.trilinos_matrix(),
+                   ExcInternalError());
             iterations = 1;
-            return true;
+            if (!factorization_ok)
+              return false;
+            direct_problem->SetLHS(&x.trilinos_vector());
+            direct_problem->SetRHS(
+              const_cast<Epetra_MultiVector *>(
+                static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+            return direct_solver->Solve() == 0;
           }
         if (block_preconditioner && parameters.preconditioner == "amg")
           {

@@ -10,6 +10,9 @@
 #include "io/parameters.h"
 #include "solvers/block_preconditioner.h"
 
+#include <Amesos_BaseSolver.h>
+#include <Epetra_LinearProblem.h>
+
 #include <memory>
 #include <vector>
 
@@ -55,10 +58,15 @@ namespace clothsim
     TrilinosWrappers::PreconditionAMG *amg = nullptr;
     // With director angles: AMG on the displacement block, Jacobi on the angles.
     std::unique_ptr<BlockPreconditioner> block_preconditioner;
+    // Direct solver: the symbolic factorisation of the first tangent serves all later
+    // ones (same sparsity); each new tangent is factorised numerically once.
+    std::unique_ptr<Epetra_LinearProblem> direct_problem;
+    std::unique_ptr<Amesos_BaseSolver>    direct_solver;
     // CG iterations of the last solve, and of the first solve after the aggregates were
     // built.
     mutable unsigned int last_iterations          = 0;
     mutable unsigned int iterations_after_rebuild = 0;
     mutable bool         awaiting_first_solve     = false;
+    bool                 factorization_ok         = false;
   };
 } // namespace clothsim
