@@ -325,6 +325,15 @@ namespace clothsim
       "Forces in N per m of reference length along gmsh boundary line groups: "
       "'name: qx, qy, qz; ...', lumped onto the edges' vertices. Dead loads; "
       "scaled by the load factor in static mode.");
+    prm.declare_entry(
+      "Pressure",
+      "0",
+      Patterns::Double(),
+      "Pressure in Pa on the whole surface, along the current normal (x1 - x0) x "
+      "(x2 - x0) of each triangle (a follower load). Exact where the surface is "
+      "closed or its boundary is held; on free edges it acts through the potential "
+      "-p V (V: volume of the cones from the reference centroid to the triangles), "
+      "see physics/pressure.h. Scaled by the load factor in static mode.");
     prm.leave_subsection();
   }
 
@@ -338,6 +347,7 @@ namespace clothsim
       gravity[d] = values[d];
     point_forces = group_loads(prm.get("Point forces"));
     line_forces  = group_loads(prm.get("Line forces"));
+    pressure     = prm.get_double("Pressure");
     prm.leave_subsection();
   }
 

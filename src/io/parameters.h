@@ -72,6 +72,7 @@ namespace clothsim
     Tensor<1, 3>           gravity;      // m/s²
     std::vector<GroupLoad> point_forces; // N
     std::vector<GroupLoad> line_forces;  // N/m
+    double                 pressure;     // Pa, along the mesh normal of the current surface
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -659,6 +659,25 @@ namespace clothsim
               }
           }
 
+        // Pressure: λ Φ_p (its indefinite Hessian only in the exact tangent).
+        if (parameters.loads.pressure != 0.)
+          {
+            physics::ElementVector g_p;
+            physics::ElementMatrix H_p;
+            const bool             with_hessian = hessian != nullptr && !terms.projected_tangent;
+            value += terms.load_factor *
+                     physics::pressure_potential_gradient_hessian(
+                       parameters.loads.pressure, x, pressure_apex, g_p,
+                       with_hessian ? &H_p : nullptr);
+            for (unsigned int i = 0; i < 9; ++i)
+              {
+                g_e[i] += terms.load_factor * g_p[i];
+                if (with_hessian)
+                  for (unsigned int j = 0; j < 9; ++j)
+                    H_e[i][j] += terms.load_factor * H_p[i][j];
+              }
+          }
+
         // Bending energy on positions and edge angles (12 local unknowns).
         if (bending)
           {
@@ -810,6 +829,19 @@ namespace clothsim
       }
     external_forces.compress(VectorOperation::add);
     constraints.set_zero(external_forces);
+
+    // The pressure potential's apex: the area-weighted centroid of the reference surface.
+    Tensor<1, 3> moment;
+    double       area = 0.;
+    for (const Element &element : elements)
+      {
+        for (unsigned int v = 0; v < 3; ++v)
+          moment += (element.rest.area / 3.) * element.reference[v];
+        area += element.rest.area;
+      }
+    for (unsigned int d = 0; d < 3; ++d)
+      moment[d] = Utilities::MPI::sum(moment[d], communicator);
+    pressure_apex = Point<3>(moment / Utilities::MPI::sum(area, communicator));
   }
 
 
@@ -875,6 +907,16 @@ namespace clothsim
             const physics::EdgeDirectors directors = edge_directors(element, u, psi);
             local.elastic += physics::bending_energy(
               bending_material, element.bending_rest, x, directors, psi);
+          }
+        if (parameters.loads.pressure != 0.)
+          {
+            // -p (V(x) - V(X)): zero in the reference configuration, like gravity's.
+            physics::ElementVector g_p;
+            local.potential +=
+              physics::pressure_potential_gradient_hessian(
+                parameters.loads.pressure, x, pressure_apex, g_p, nullptr) -
+              physics::pressure_potential_gradient_hessian(
+                parameters.loads.pressure, element.reference, pressure_apex, g_p, nullptr);
           }
         const double vertex_mass = rho * element.rest.area / 3.;
         for (unsigned int a = 0; a < 3; ++a)

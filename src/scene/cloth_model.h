@@ -37,6 +37,7 @@
 #include "mesh/gmsh_reader.h"
 #include "physics/bending.h"
 #include "physics/membrane.h"
+#include "physics/pressure.h"
 #include "solvers/linear_solver.h"
 
 #include <array>
@@ -297,6 +298,8 @@ namespace clothsim
     std::vector<types::global_dof_index> unused_dofs;
     // Point and line forces f_ext (owned, zero at pinned dofs), N.
     VectorType external_forces;
+    // Apex of the pressure potential's cones: the reference surface's centroid.
+    Point<3> pressure_apex;
 
     // Pinned dofs (locally relevant): dof, component, reference position of its vertex.
     struct PinnedDof
