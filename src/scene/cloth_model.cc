@@ -90,6 +90,10 @@ namespace clothsim
     const auto description =
       TriangulationDescription::Utilities::create_description_from_triangulation(
         refined, communicator);
+    // The distributed triangulation repeats the refinement from the coarse cells: it needs
+    // the surface too.
+    if (surface != nullptr)
+      triangulation.set_manifold(1, *surface);
     triangulation.create_triangulation(description);
   }
 
