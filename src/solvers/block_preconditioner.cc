@@ -58,58 +58,80 @@ namespace clothsim
   BlockPreconditioner::initialize(const TrilinosWrappers::SparseMatrix &matrix,
                                   const Teuchos::ParameterList         &ml_parameters)
   {
+    tangent                 = &matrix;
     const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
     const Epetra_Map        map =
       block_owned.make_trilinos_map(communicator, /*overlapping=*/false);
     const int first_row = block_owned.n_elements() > 0 ? *block_owned.begin() : 0;
+    if (full_in.size() != matrix.m())
+      {
+        full_in.reinit(owned, communicator);
+        full_out.reinit(owned, communicator);
+      }
 
-    // K_uu: the displacement rows, restricted to displacement columns.
-    std::vector<int> row_lengths(displacement_local.size());
-    for (unsigned int k = 0; k < displacement_local.size(); ++k)
-      row_lengths[k] = A.NumMyEntries(displacement_local[k]);
-    block_matrix = std::make_unique<Epetra_CrsMatrix>(Copy, map, row_lengths.data(), true);
+    // The row of the tangent with local index `row`, split into displacement columns
+    // (block numbering) and the diagonal entry.
     std::vector<int>    columns;
     std::vector<double> entries;
+    const auto          split_row = [&](const int row, double &diagonal) {
+      int     n;
+      double *values;
+      int    *indices;
+      A.ExtractMyRowView(row, n, values, indices);
+      const int row_gid = A.RowMap().GID(row);
+      columns.clear();
+      entries.clear();
+      diagonal = 0.;
+      for (int e = 0; e < n; ++e)
+        {
+          const int    gid    = A.ColMap().GID(indices[e]);
+          const double column = block_index_ghosted(gid);
+          if (gid == row_gid)
+            diagonal = values[e];
+          if (column >= 0.)
+            {
+              columns.push_back(static_cast<int>(column));
+              entries.push_back(values[e]);
+            }
+        }
+    };
+
+    // A: the displacement rows restricted to displacement columns; the hinge stencil of
+    // the Schur correction makes rows longer, so the profile grows as needed.
+    block_matrix = std::make_unique<Epetra_FECrsMatrix>(Copy, map, 64);
+    double unused_diagonal;
     for (unsigned int k = 0; k < displacement_local.size(); ++k)
       {
-        int     n;
-        double *values;
-        int    *indices;
-        A.ExtractMyRowView(displacement_local[k], n, values, indices);
-        columns.clear();
-        entries.clear();
-        for (int e = 0; e < n; ++e)
-          {
-            const double column = block_index_ghosted(A.ColMap().GID(indices[e]));
-            if (column >= 0.)
-              {
-                columns.push_back(static_cast<int>(column));
-                entries.push_back(values[e]);
-              }
-          }
+        split_row(displacement_local[k], unused_diagonal);
         const int row = first_row + k;
-        block_matrix->InsertGlobalValues(row, columns.size(), entries.data(), columns.data());
+        block_matrix->InsertGlobalValues(1, &row, columns.size(), columns.data(), entries.data());
       }
-    block_matrix->FillComplete();
 
-    // Jacobi on the rest.
+    // D and -B D⁻¹ Bᵀ: each angle row's displacement entries b give -b bᵀ / D_ψψ.
     other_inverse_diagonal.resize(other_local.size());
+    std::vector<double> outer;
     for (unsigned int k = 0; k < other_local.size(); ++k)
       {
-        int     n;
-        double *values;
-        int    *indices;
-        A.ExtractMyRowView(other_local[k], n, values, indices);
-        const int row_gid  = A.RowMap().GID(other_local[k]);
-        double    diagonal = 0.;
-        for (int e = 0; e < n; ++e)
-          if (A.ColMap().GID(indices[e]) == row_gid)
-            diagonal = values[e];
+        double diagonal;
+        split_row(other_local[k], diagonal);
         AssertThrow(diagonal > 0.,
                     ExcMessage("the tangent has a non-positive diagonal entry on a "
                                "director angle"));
         other_inverse_diagonal[k] = 1. / diagonal;
+        if (columns.empty())
+          continue;
+        outer.resize(columns.size() * columns.size());
+        for (unsigned int a = 0; a < columns.size(); ++a)
+          for (unsigned int b = 0; b < columns.size(); ++b)
+            outer[a * columns.size() + b] = -entries[a] * entries[b] / diagonal;
+        block_matrix->InsertGlobalValues(columns.size(),
+                                         columns.data(),
+                                         columns.size(),
+                                         columns.data(),
+                                         outer.data(),
+                                         Epetra_FECrsMatrix::ROW_MAJOR);
       }
+    block_matrix->GlobalAssemble();
 
     amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     amg->initialize(*block_matrix, ml_parameters);
@@ -120,16 +142,33 @@ namespace clothsim
   BlockPreconditioner::vmult(TrilinosWrappers::MPI::Vector       &dst,
                              const TrilinosWrappers::MPI::Vector &src) const
   {
-    const Epetra_Vector &s  = *src.trilinos_vector()(0);
-    Epetra_Vector       &d  = *dst.trilinos_vector()(0);
-    Epetra_Vector       &bs = *block_src.trilinos_vector()(0);
-    Epetra_Vector       &bd = *block_dst.trilinos_vector()(0);
+    const Epetra_Vector &s   = *src.trilinos_vector()(0);
+    Epetra_Vector       &d   = *dst.trilinos_vector()(0);
+    Epetra_Vector       &in  = *full_in.trilinos_vector()(0);
+    Epetra_Vector       &out = *full_out.trilinos_vector()(0);
+    Epetra_Vector       &bs  = *block_src.trilinos_vector()(0);
+    Epetra_Vector       &bd  = *block_dst.trilinos_vector()(0);
+
+    // y_ψ = D⁻¹ r_ψ, then r_u - B y_ψ.
+    in.PutScalar(0.);
+    for (unsigned int k = 0; k < other_local.size(); ++k)
+      in[other_local[k]] = other_inverse_diagonal[k] * s[other_local[k]];
+    tangent->vmult(full_out, full_in);
     for (unsigned int k = 0; k < displacement_local.size(); ++k)
-      bs[k] = s[displacement_local[k]];
+      bs[k] = s[displacement_local[k]] - out[displacement_local[k]];
+
+    // z_u = S̃⁻¹ (...)
     amg->vmult(block_dst, block_src);
+
+    // z_ψ = D⁻¹ (r_ψ - Bᵀ z_u).
+    in.PutScalar(0.);
+    for (unsigned int k = 0; k < displacement_local.size(); ++k)
+      in[displacement_local[k]] = bd[k];
+    tangent->vmult(full_out, full_in);
     for (unsigned int k = 0; k < displacement_local.size(); ++k)
       d[displacement_local[k]] = bd[k];
     for (unsigned int k = 0; k < other_local.size(); ++k)
-      d[other_local[k]] = other_inverse_diagonal[k] * s[other_local[k]];
+      d[other_local[k]] =
+        other_inverse_diagonal[k] * (s[other_local[k]] - out[other_local[k]]);
   }
 } // namespace clothsim
