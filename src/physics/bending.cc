@@ -203,50 +203,105 @@ namespace clothsim::physics
     std::array<double, 3>                             h, phi;
     std::array<std::array<double, 9>, 3>              dh, dphi;
     std::array<std::array<std::array<double, 9>, 9>, 3> ddh{}, ddphi{};
-    const std::array<double, 9>                       c = coordinates(x);
+    const auto c_x = [&x](const unsigned int component, const unsigned int vertex) {
+      return x[vertex][component];
+    };
     const bool exact_hessian = hessian != nullptr && !gauss_newton;
+    // h_i and φ_i depend on the positions only through a_1 = x1 - x0 and a_2 = x2 - x0
+    // (translation invariance): differentiate in those 6 variables, then map with
+    // ∂/∂x1 = ∂/∂a_1, ∂/∂x2 = ∂/∂a_2, ∂/∂x0 = -(∂/∂a_1 + ∂/∂a_2).
+    const auto to_vertices = [](const std::array<double, 6> &d6,
+                                std::array<double, 9>       &d9) {
+      for (unsigned int c = 0; c < 3; ++c)
+        {
+          d9[3 + c] = d6[c];
+          d9[6 + c] = d6[3 + c];
+          d9[c]     = -d6[c] - d6[3 + c];
+        }
+    };
+    std::array<double, 6> a;
+    for (unsigned int c = 0; c < 3; ++c)
+      {
+        a[c]     = c_x(c, 1) - c_x(c, 0);
+        a[3 + c] = c_x(c, 2) - c_x(c, 0);
+      }
+    std::array<double, 6> d6_h, d6_phi;
     if (exact_hessian)
       {
-        using Inner = Sacado::Fad::SFad<double, 9>;
-        using Outer = Sacado::Fad::SFad<Inner, 9>;
+        using Inner = Sacado::Fad::SFad<double, 6>;
+        using Outer = Sacado::Fad::SFad<Inner, 6>;
         std::array<Outer, 9> xs;
-        for (unsigned int j = 0; j < 9; ++j)
-          xs[j] = Outer(9, j, Inner(9, j, c[j]));
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            xs[c]     = Outer(0.);
+            xs[3 + c] = Outer(6, c, Inner(6, c, a[c]));
+            xs[6 + c] = Outer(6, 3 + c, Inner(6, 3 + c, a[3 + c]));
+          }
         std::array<Outer, 3> altitude, tilt;
         edge_geometry(xs, directors.reference, altitude, tilt);
+        std::array<std::array<double, 6>, 6> dd6_h, dd6_phi;
+        std::array<std::array<double, 9>, 6> half_h, half_phi; // rows in a, columns in x
         for (unsigned int i = 0; i < 3; ++i)
           {
             h[i]   = altitude[i].val().val();
             phi[i] = tilt[i].val().val();
-            for (unsigned int j = 0; j < 9; ++j)
+            for (unsigned int j = 0; j < 6; ++j)
               {
-                dh[i][j]   = altitude[i].dx(j).val();
-                dphi[i][j] = tilt[i].dx(j).val();
-                for (unsigned int k = 0; k < 9; ++k)
+                d6_h[j]   = altitude[i].dx(j).val();
+                d6_phi[j] = tilt[i].dx(j).val();
+                for (unsigned int k = 0; k < 6; ++k)
                   {
-                    ddh[i][j][k]   = altitude[i].dx(j).dx(k);
-                    ddphi[i][j][k] = tilt[i].dx(j).dx(k);
+                    dd6_h[j][k]   = altitude[i].dx(j).dx(k);
+                    dd6_phi[j][k] = tilt[i].dx(j).dx(k);
+                  }
+                to_vertices(dd6_h[j], half_h[j]);
+                to_vertices(dd6_phi[j], half_phi[j]);
+              }
+            to_vertices(d6_h, dh[i]);
+            to_vertices(d6_phi, dphi[i]);
+            // Second derivatives: the same map on both sides.
+            for (unsigned int k = 0; k < 9; ++k)
+              {
+                std::array<double, 6> column_h, column_phi;
+                std::array<double, 9> mapped_h, mapped_phi;
+                for (unsigned int j = 0; j < 6; ++j)
+                  {
+                    column_h[j]   = half_h[j][k];
+                    column_phi[j] = half_phi[j][k];
+                  }
+                to_vertices(column_h, mapped_h);
+                to_vertices(column_phi, mapped_phi);
+                for (unsigned int j = 0; j < 9; ++j)
+                  {
+                    ddh[i][j][k]   = mapped_h[j];
+                    ddphi[i][j][k] = mapped_phi[j];
                   }
               }
           }
       }
     else
       {
-        using Number = Sacado::Fad::SFad<double, 9>;
+        using Number = Sacado::Fad::SFad<double, 6>;
         std::array<Number, 9> xs;
-        for (unsigned int j = 0; j < 9; ++j)
-          xs[j] = Number(9, j, c[j]);
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            xs[c]     = Number(0.);
+            xs[3 + c] = Number(6, c, a[c]);
+            xs[6 + c] = Number(6, 3 + c, a[3 + c]);
+          }
         std::array<Number, 3> altitude, tilt;
         edge_geometry(xs, directors.reference, altitude, tilt);
         for (unsigned int i = 0; i < 3; ++i)
           {
             h[i]   = altitude[i].val();
             phi[i] = tilt[i].val();
-            for (unsigned int j = 0; j < 9; ++j)
+            for (unsigned int j = 0; j < 6; ++j)
               {
-                dh[i][j]   = altitude[i].dx(j);
-                dphi[i][j] = tilt[i].dx(j);
+                d6_h[j]   = altitude[i].dx(j);
+                d6_phi[j] = tilt[i].dx(j);
               }
+            to_vertices(d6_h, dh[i]);
+            to_vertices(d6_phi, dphi[i]);
           }
       }
 
