@@ -5,6 +5,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include "eigenvalues.h"
 #include "physics/membrane.h"
 
 #include <cmath>
@@ -105,17 +106,7 @@ main()
       // Projected tangent (floor 0): positive semi-definite.
       ElementMatrix projected;
       membrane_energy_gradient_hessian(material, rest, current, 0., gradient, &projected);
-      dealii::LAPACKFullMatrix<double> matrix(9, 9);
-      for (unsigned int i = 0; i < 9; ++i)
-        for (unsigned int j = 0; j < 9; ++j)
-          matrix(i, j) = projected[i][j];
-      matrix.compute_eigenvalues();
-      double smallest = infinity, largest = 0.;
-      for (unsigned int i = 0; i < 9; ++i)
-        {
-          smallest = std::min(smallest, matrix.eigenvalue(i).real());
-          largest  = std::max(largest, matrix.eigenvalue(i).real());
-        }
+      const auto [smallest, largest] = clothsim::test::extreme_eigenvalues(projected);
       most_negative = std::min(most_negative, smallest / largest);
       if (smallest < -1e-10 * largest)
         {
