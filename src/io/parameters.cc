@@ -443,7 +443,7 @@ namespace clothsim
       "Adaptive load steps",
       "false",
       Patterns::Bool(),
-      "Static mode: after an increment that Newton solves in at most 4 iterations "
+      "Static mode: after an increment that Newton solves in at most 6 iterations "
       "the next one is 1.5 times larger (never more than 1/'Load steps' times 4); "
       "a failed increment is halved as always.");
     prm.leave_subsection();

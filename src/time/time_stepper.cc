@@ -258,7 +258,7 @@ namespace clothsim
           {
             if (halvings > 0)
               nominal_step /= std::pow(2., halvings);
-            else if (last_iterations <= 4)
+            else if (last_iterations <= 6)
               nominal_step = std::min(1.5 * nominal_step, largest_increment);
           }
       }
