@@ -149,24 +149,22 @@ main(int argc, char **argv)
                                             "Output/Progress=off",
                                             "Mesh/Global refinements=0"};
       overrides.insert(overrides.end(), settings.begin(), settings.end());
-      const test::SceneRun run = test::run_scene(benchmarks + "heavy-cantilever.prm",
+      const test::SceneRun run   = test::run_scene(benchmarks + "heavy-cantilever.prm",
                                                  overrides,
                                                  directory,
                                                  communicator);
-      const double value = -run.probe_displacement("tip")[2];
+      const double         value = -run.probe_displacement("tip")[2];
       pcout << "  " << name << ": " << run.summary.steps << " increments, "
             << run.summary.retries << " cut, tip deflection " << std::setprecision(12)
             << value << std::endl;
-      passed &= test::check_below(pcout,
-                                  name + ": relative difference from 8 fixed increments",
-                                  std::abs(value - deflection.values[0]) /
-                                    deflection.values[0],
-                                  1e-8);
+      passed &=
+        test::check_below(pcout,
+                          name + ": relative difference from 8 fixed increments",
+                          std::abs(value - deflection.values[0]) / deflection.values[0],
+                          1e-8);
       if (settings.size() == 1)
-        passed &= test::check_above(pcout,
-                                    name + ": increments cut",
-                                    run.summary.retries,
-                                    0.5);
+        passed &=
+          test::check_above(pcout, name + ": increments cut", run.summary.retries, 0.5);
       else
         passed &= test::check_below(pcout,
                                     name + ": increments taken (of 20 initially)",

@@ -279,7 +279,7 @@ main()
       SpringMatrix projected;
       spring_energy_gradient_hessian(spring, x, true, gradient, &projected);
       const auto [smallest, largest] = clothsim::test::extreme_eigenvalues(projected);
-      most_negative = std::min(most_negative, smallest / largest);
+      most_negative                  = std::min(most_negative, smallest / largest);
 
       // Rigid motion.
       const Tensor<2, 3> R = rotation(random_unit(generator), M_PI * uniform(generator));

@@ -107,7 +107,7 @@ main()
       ElementMatrix projected;
       membrane_energy_gradient_hessian(material, rest, current, 0., gradient, &projected);
       const auto [smallest, largest] = clothsim::test::extreme_eigenvalues(projected);
-      most_negative = std::min(most_negative, smallest / largest);
+      most_negative                  = std::min(most_negative, smallest / largest);
       if (smallest < -1e-10 * largest)
         {
           ++n_failures;

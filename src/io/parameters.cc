@@ -71,7 +71,8 @@ namespace clothsim
     Tensor<1, 3>
     vector_entry(const std::string &text)
     {
-      const auto   values = Utilities::string_to_double(Utilities::split_string_list(text, ','));
+      const auto values =
+        Utilities::string_to_double(Utilities::split_string_list(text, ','));
       Tensor<1, 3> vector;
       for (unsigned int d = 0; d < 3; ++d)
         vector[d] = values[d];
@@ -250,9 +251,9 @@ namespace clothsim
       stretch_stiffness = prm.get_double("Stretch stiffness");
     else
       stretch_stiffness = prm.get_double("Young's modulus") * prm.get_double("Thickness");
-    poisson_ratio = prm.get_double("Poisson ratio");
-    areal_density = prm.get_double("Areal density");
-    lumped_mass   = prm.get("Mass") == "lumped";
+    poisson_ratio                      = prm.get_double("Poisson ratio");
+    areal_density                      = prm.get_double("Areal density");
+    lumped_mass                        = prm.get("Mass") == "lumped";
     const std::string bending_given_as = prm.get("Bending");
     bending                            = bending_given_as != "none";
     if (bending_given_as == "rigidity")
@@ -306,12 +307,13 @@ namespace clothsim
                       "0, 0, -9.81",
                       Patterns::List(Patterns::Double(-1e6, 1e6), 3, 3, ","),
                       "Gravitational acceleration g (x, y, z) in m/s².");
-    const auto group_vectors = Patterns::Map(Patterns::Anything(),
-                                             Patterns::List(Patterns::Double(), 3, 3, ","),
-                                             0,
-                                             1000,
-                                             ";",
-                                             ":");
+    const auto group_vectors =
+      Patterns::Map(Patterns::Anything(),
+                    Patterns::List(Patterns::Double(), 3, 3, ","),
+                    0,
+                    1000,
+                    ";",
+                    ":");
     prm.declare_entry(
       "Point forces",
       "",
@@ -407,7 +409,7 @@ namespace clothsim
         pinned_groups.push_back(group);
       }
     pinned_displacement = prm.get("Pinned displacement");
-    clamped_groups = Utilities::split_string_list(prm.get("Clamped groups"), ';');
+    clamped_groups      = Utilities::split_string_list(prm.get("Clamped groups"), ';');
     prm.leave_subsection();
   }
 

@@ -34,12 +34,12 @@ namespace clothsim
 
   struct MaterialParameters
   {
-    double stretch_stiffness; // E h, N/m (derived when given as E and thickness)
-    double poisson_ratio;     // dimensionless
-    double areal_density;     // kg/m²
-    bool   lumped_mass;
-    bool   bending;           // assemble the bending energy
-    double bending_rigidity;  // D, N·m (derived when given as E and thickness)
+    double      stretch_stiffness; // E h, N/m (derived when given as E and thickness)
+    double      poisson_ratio;     // dimensionless
+    double      areal_density;     // kg/m²
+    bool        lumped_mass;
+    bool        bending;           // assemble the bending energy
+    double      bending_rigidity;  // D, N·m (derived when given as E and thickness)
     std::string director_function; // "angle", "sine", "tangent" (see physics/bending.h)
 
     static void
@@ -72,7 +72,7 @@ namespace clothsim
     Tensor<1, 3>           gravity;      // m/s²
     std::vector<GroupLoad> point_forces; // N
     std::vector<GroupLoad> line_forces;  // N/m
-    double                 pressure;     // Pa, along the mesh normal of the current surface
+    double                 pressure; // Pa, along the mesh normal of the current surface
 
     static void
     declare_parameters(ParameterHandler &prm);

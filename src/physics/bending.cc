@@ -23,8 +23,7 @@ namespace clothsim::physics
             return {delta, 1., 0.};
           case DirectorFunction::sine:
             return {std::sin(delta), std::cos(delta), -std::sin(delta)};
-          case DirectorFunction::tangent:
-            {
+            case DirectorFunction::tangent: {
               const double t = std::tan(delta);
               return {t, 1. + t * t, 2. * t * (1. + t * t)};
             }
@@ -68,12 +67,12 @@ namespace clothsim::physics
           Vec3<Number>       e;
           for (unsigned int d = 0; d < 3; ++d)
             e[d] = x[3 * k + d] - x[3 * j + d];
-          const Number length = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-          const Tensor<1, 3> &r = reference[i];
+          const Number        length = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+          const Tensor<1, 3> &r      = reference[i];
           // r × e (linear in x), then N·(r × e) and N·r.
-          const Vec3<Number> r_cross_e = {{r[1] * e[2] - r[2] * e[1],
-                                           r[2] * e[0] - r[0] * e[2],
-                                           r[0] * e[1] - r[1] * e[0]}};
+          const Vec3<Number> r_cross_e   = {{r[1] * e[2] - r[2] * e[1],
+                                             r[2] * e[0] - r[0] * e[2],
+                                             r[0] * e[1] - r[1] * e[0]}};
           const Number       normal_part = N[0] * r[0] + N[1] * r[1] + N[2] * r[2];
           const Number       conormal_part =
             (N[0] * r_cross_e[0] + N[1] * r_cross_e[1] + N[2] * r_cross_e[2]) / length;
@@ -102,9 +101,8 @@ namespace clothsim::physics
       std::array<double, 3> altitude, tilt, curvature;
       edge_geometry(coordinates(x), directors.reference, altitude, tilt);
       for (unsigned int i = 0; i < 3; ++i)
-        curvature[i] =
-          2. * altitude[i] *
-          evaluate(function, tilt[i] + directors.sign[i] * psi[i]).value;
+        curvature[i] = 2. * altitude[i] *
+                       evaluate(function, tilt[i] + directors.sign[i] * psi[i]).value;
       return curvature;
     }
 
@@ -129,10 +127,10 @@ namespace clothsim::physics
                     const TrianglePositions &reference,
                     const EdgeDirectors     &rest_directors)
   {
-    BendingRestData       rest;
-    const Tensor<1, 3>    a1 = reference[1] - reference[0], a2 = reference[2] - reference[0];
-    const double          area = 0.5 * cross_product_3d(a1, a2).norm();
-    Tensor<2, 2>          metric;
+    BendingRestData    rest;
+    const Tensor<1, 3> a1 = reference[1] - reference[0], a2 = reference[2] - reference[0];
+    const double       area = 0.5 * cross_product_3d(a1, a2).norm();
+    Tensor<2, 2>       metric;
     metric[0][0] = a1 * a1;
     metric[0][1] = metric[1][0] = a1 * a2;
     metric[1][1]                = a2 * a2;
@@ -200,8 +198,8 @@ namespace clothsim::physics
   {
     // h_i and φ_i with their first and (if a Hessian is wanted) second derivatives in
     // the 9 coordinates.
-    std::array<double, 3>                             h, phi;
-    std::array<std::array<double, 9>, 3>              dh, dphi;
+    std::array<double, 3>                               h, phi;
+    std::array<std::array<double, 9>, 3>                dh, dphi;
     std::array<std::array<std::array<double, 9>, 9>, 3> ddh{}, ddphi{};
     const auto c_x = [&x](const unsigned int component, const unsigned int vertex) {
       return x[vertex][component];
@@ -311,9 +309,8 @@ namespace clothsim::physics
     std::array<BendingVector, 3>          dII{};
     for (unsigned int i = 0; i < 3; ++i)
       {
-        f[i]             = evaluate(material.director_function,
-                        phi[i] + directors.sign[i] * psi[i]);
-        II[i]            = 2. * h[i] * f[i].value;
+        f[i]  = evaluate(material.director_function, phi[i] + directors.sign[i] * psi[i]);
+        II[i] = 2. * h[i] * f[i].value;
         II_minus_rest[i] = II[i] - rest.rest_edge_curvature[i];
         for (unsigned int j = 0; j < 9; ++j)
           dII[i][j] = 2. * (f[i].value * dh[i][j] + h[i] * f[i].first * dphi[i][j]);
@@ -339,7 +336,7 @@ namespace clothsim::physics
       return energy;
 
     // Gauss–Newton part Σ_ik C_ik ∇II_i ∇II_kᵀ.
-    BendingMatrix &H = *hessian;
+    BendingMatrix               &H = *hessian;
     std::array<BendingVector, 3> C_dII{};
     for (unsigned int i = 0; i < 3; ++i)
       for (unsigned int k = 0; k < 3; ++k)
@@ -361,7 +358,7 @@ namespace clothsim::physics
     //   ∂²II_i/∂x∂ψ_i = 2 s_i [f' ∇h + h f'' ∇φ],   ∂²II_i/∂ψ_i² = 2 h f''.
     for (unsigned int i = 0; i < 3; ++i)
       {
-        const double w = 2. * g[i];
+        const double w  = 2. * g[i];
         const auto  &fi = f[i];
         for (unsigned int a = 0; a < 9; ++a)
           {
@@ -370,8 +367,8 @@ namespace clothsim::physics
                               fi.first * (dh[i][a] * dphi[i][b] + dphi[i][a] * dh[i][b]) +
                               h[i] * fi.second * dphi[i][a] * dphi[i][b] +
                               h[i] * fi.first * ddphi[i][a][b]);
-            const double mixed =
-              w * directors.sign[i] * (fi.first * dh[i][a] + h[i] * fi.second * dphi[i][a]);
+            const double mixed = w * directors.sign[i] *
+                                 (fi.first * dh[i][a] + h[i] * fi.second * dphi[i][a]);
             H[a][9 + i] += mixed;
             H[9 + i][a] += mixed;
           }

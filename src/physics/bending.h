@@ -16,12 +16,11 @@
 //   director tilt             δ_i = atan2(r_i·μ_i, r_i·n) + s_i ψ_i
 // where r_i is the edge's reference vector (the director at ψ = 0; only its part normal
 // to the edge matters, so δ_i = atan2(N·(r_i × e_i)/ℓ_i, N·r_i) needs no projection) and
-// s_i = ±1 says whether the edge's global direction is e_i (+1) or -e_i (-1): rotating the
-// director by +ψ about the globally oriented edge tilts it by s_i ψ towards μ_i.
-// Each element thus needs only its own 3 vertices and 3 edge angles (12 unknowns; chart
-// B of BENDING.md). The reference vectors are re-based on the current directors after
-// every converged step (ψ -> 0), so the chart never approaches its singularity
-// (r_i ∥ e_i).
+// s_i = ±1 says whether the edge's global direction is e_i (+1) or -e_i (-1): rotating
+// the director by +ψ about the globally oriented edge tilts it by s_i ψ towards μ_i. Each
+// element thus needs only its own 3 vertices and 3 edge angles (12 unknowns; chart B of
+// BENDING.md). The reference vectors are re-based on the current directors after every
+// converged step (ψ -> 0), so the chart never approaches its singularity (r_i ∥ e_i).
 //
 //   edge curvature            II_i = 2 h_i f(δ_i),  f = id, sin or tan
 //   second fundamental form   b = [[II_0 + II_1, II_0], [II_0, II_0 + II_2]]
@@ -83,7 +82,7 @@ namespace clothsim::physics
   // What the rest state of one triangle contributes, computed once.
   struct BendingRestData
   {
-    std::array<std::array<double, 3>, 3> stiffness; // C, N/m (J per m² of II)
+    std::array<std::array<double, 3>, 3> stiffness;           // C, N/m (J per m² of II)
     std::array<double, 3>                rest_edge_curvature; // ĪI_i, m
     Tensor<2, 2>                         inverse_metric;      // Ā⁻¹, 1/m²
   };

@@ -38,7 +38,7 @@ namespace clothsim::physics
                     const unsigned int k = 3 - a - b;
                     if (a == b)
                       continue;
-                    const double epsilon = (b == (a + 1) % 3) ? 1. : -1.;
+                    const double epsilon    = (b == (a + 1) % 3) ? 1. : -1.;
                     H[3 * i + a][3 * j + b] = scale * sign * epsilon * y[m][k];
                   }
             }

@@ -28,19 +28,23 @@ namespace clothsim
     , parameters(parameters)
     , triangulation(communicator)
     , fe(parameters.material.bending
-           ? std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1), 3, FE_SimplexP<2, 3>(2), 1)
+           ? std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1),
+                                              3,
+                                              FE_SimplexP<2, 3>(2),
+                                              1)
            : std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1), 3))
     , mapping(FE_SimplexP<2, 3>(1))
     , pinned_displacement(3)
   {
-    material.stretch_stiffness = parameters.material.stretch_stiffness;
-    material.poisson_ratio     = parameters.material.poisson_ratio;
+    material.stretch_stiffness     = parameters.material.stretch_stiffness;
+    material.poisson_ratio         = parameters.material.poisson_ratio;
     bending_material.rigidity      = parameters.material.bending_rigidity;
     bending_material.poisson_ratio = parameters.material.poisson_ratio;
     bending_material.director_function =
-      parameters.material.director_function == "sine"    ? physics::DirectorFunction::sine :
-      parameters.material.director_function == "tangent" ? physics::DirectorFunction::tangent :
-                                                            physics::DirectorFunction::angle;
+      parameters.material.director_function == "sine" ? physics::DirectorFunction::sine
+      : parameters.material.director_function == "tangent"
+        ? physics::DirectorFunction::tangent
+        : physics::DirectorFunction::angle;
     if (!parameters.constraints.clamped_groups.empty() && !parameters.material.bending)
       throw InputError(parameter_file,
                        "Constraints/Clamped groups",
@@ -73,10 +77,12 @@ namespace clothsim
     // Curved rest surfaces: new vertices go onto the exact surface.
     std::unique_ptr<Manifold<2, 3>> surface;
     if (parameters.scene.surface == "cylinder")
-      surface = std::make_unique<CylindricalManifold<2, 3>>(parameters.scene.surface_axis,
-                                                            parameters.scene.surface_center);
+      surface =
+        std::make_unique<CylindricalManifold<2, 3>>(parameters.scene.surface_axis,
+                                                    parameters.scene.surface_center);
     else if (parameters.scene.surface == "sphere")
-      surface = std::make_unique<SphericalManifold<2, 3>>(parameters.scene.surface_center);
+      surface =
+        std::make_unique<SphericalManifold<2, 3>>(parameters.scene.surface_center);
     if (surface != nullptr)
       {
         refined.set_all_manifold_ids(1);
@@ -90,8 +96,8 @@ namespace clothsim
     const auto description =
       TriangulationDescription::Utilities::create_description_from_triangulation(
         refined, communicator);
-    // The distributed triangulation repeats the refinement from the coarse cells: it needs
-    // the surface too.
+    // The distributed triangulation repeats the refinement from the coarse cells: it
+    // needs the surface too.
     if (surface != nullptr)
       triangulation.set_manifold(1, *surface);
     triangulation.create_triangulation(description);
@@ -199,9 +205,9 @@ namespace clothsim
                      cell->vertex_index(v) == cell->line(line)->vertex_index(1))
                 ++v;
               const unsigned int next = (v + 1) % 3, after = (v + 2) % 3;
-              const bool forward      = precedes(cell->vertex(next), cell->vertex(after));
-              element.angle_dofs[v]   = dof_indices[i];
-              element.edge_signs[v]   = forward ? 1. : -1.;
+              const bool forward    = precedes(cell->vertex(next), cell->vertex(after));
+              element.angle_dofs[v] = dof_indices[i];
+              element.edge_signs[v] = forward ? 1. : -1.;
 
               auto [slot, inserted] = slot_of_dof.emplace(dof_indices[i], edges.size());
               element.edge_slots[v] = slot->second;
@@ -212,8 +218,8 @@ namespace clothsim
               Edge edge;
               edge.angle_dof = dof_indices[i];
               const std::array<unsigned int, 2> ends =
-                forward ? std::array<unsigned int, 2>{{next, after}} :
-                          std::array<unsigned int, 2>{{after, next}};
+                forward ? std::array<unsigned int, 2>{{next, after}}
+                        : std::array<unsigned int, 2>{{after, next}};
               for (unsigned int k = 0; k < 2; ++k)
                 {
                   edge.reference_points[k] = cell->vertex(ends[k]);
@@ -224,10 +230,9 @@ namespace clothsim
               if (!cell->at_boundary(line))
                 {
                   const auto         neighbor = cell->neighbor(line);
-                  const Tensor<1, 3> bisector =
-                    normal + unit_normal(neighbor->vertex(0),
-                                         neighbor->vertex(1),
-                                         neighbor->vertex(2));
+                  const Tensor<1, 3> bisector = normal + unit_normal(neighbor->vertex(0),
+                                                                     neighbor->vertex(1),
+                                                                     neighbor->vertex(2));
                   AssertThrow(bisector.norm() > 1e-8,
                               ExcMessage("two neighbouring triangles of the mesh are "
                                          "folded onto each other"));
@@ -358,7 +363,8 @@ namespace clothsim
               if (component < 3 && pinned_here[vertex][component])
                 found[dof_indices[i]] = {dof_indices[i], component, cell->vertex(vertex)};
               // The angle of a clamped boundary line (P2 line dof vertex - 3).
-              if (component == 3 && vertex >= 3 && cell->line(vertex - 3)->at_boundary() &&
+              if (component == 3 && vertex >= 3 &&
+                  cell->line(vertex - 3)->at_boundary() &&
                   clamped_ids.count(cell->line(vertex - 3)->boundary_id()) > 0)
                 clamped_angles.insert(dof_indices[i]);
             }
@@ -543,10 +549,10 @@ namespace clothsim
                        VectorType       *gradient,
                        MatrixType       *hessian) const
   {
-    const bool   lumped = parameters.material.lumped_mass;
-    const double rho    = parameters.material.areal_density;
-    const double alpha  = parameters.damping.mass_proportional;
-    const double beta   = parameters.damping.stiffness_proportional;
+    const bool   lumped  = parameters.material.lumped_mass;
+    const double rho     = parameters.material.areal_density;
+    const double alpha   = parameters.damping.mass_proportional;
+    const double beta    = parameters.damping.stiffness_proportional;
     const bool   bending = has_bending();
     // Mass-like coefficient of the quadratic terms: w_i M + w_d α M.
     const double mass_weight = terms.inertia_weight + terms.damping_weight * alpha;
@@ -668,11 +674,14 @@ namespace clothsim
           {
             physics::ElementVector g_p;
             physics::ElementMatrix H_p;
-            const bool             with_hessian = hessian != nullptr && !terms.projected_tangent;
-            value += terms.load_factor *
-                     physics::pressure_potential_gradient_hessian(
-                       parameters.loads.pressure, x, pressure_apex, g_p,
-                       with_hessian ? &H_p : nullptr);
+            const bool with_hessian = hessian != nullptr && !terms.projected_tangent;
+            value +=
+              terms.load_factor *
+              physics::pressure_potential_gradient_hessian(parameters.loads.pressure,
+                                                           x,
+                                                           pressure_apex,
+                                                           g_p,
+                                                           with_hessian ? &H_p : nullptr);
             for (unsigned int i = 0; i < 9; ++i)
               {
                 g_e[i] += terms.load_factor * g_p[i];
@@ -687,15 +696,16 @@ namespace clothsim
           {
             const physics::EdgeDirectors directors = edge_directors(element, u, psi);
             if (gradient != nullptr || hessian != nullptr)
-              value += physics::bending_energy_gradient_hessian(
-                bending_material,
-                element.bending_rest,
-                x,
-                directors,
-                psi,
-                terms.projected_tangent,
-                g_b,
-                hessian != nullptr ? &H_b : nullptr);
+              value +=
+                physics::bending_energy_gradient_hessian(bending_material,
+                                                         element.bending_rest,
+                                                         x,
+                                                         directors,
+                                                         psi,
+                                                         terms.projected_tangent,
+                                                         g_b,
+                                                         hessian != nullptr ? &H_b
+                                                                            : nullptr);
             else
               value += physics::bending_energy(
                 bending_material, element.bending_rest, x, directors, psi);
@@ -703,7 +713,9 @@ namespace clothsim
 
         std::copy(element.dofs.begin(), element.dofs.end(), dof_vector.begin());
         if (bending)
-          std::copy(element.angle_dofs.begin(), element.angle_dofs.end(), dof_vector.begin() + 9);
+          std::copy(element.angle_dofs.begin(),
+                    element.angle_dofs.end(),
+                    dof_vector.begin() + 9);
         if (gradient != nullptr)
           {
             for (unsigned int i = 0; i < n_local; ++i)
@@ -819,7 +831,8 @@ namespace clothsim
               if (cell->face(f)->at_boundary() &&
                   cell->face(f)->boundary_id() == types::boundary_id(group->second))
                 {
-                  const double length = cell->face(f)->vertex(0).distance(cell->face(f)->vertex(1));
+                  const double length =
+                    cell->face(f)->vertex(0).distance(cell->face(f)->vertex(1));
                   std::vector<types::global_dof_index> dofs;
                   std::vector<double>                  values;
                   for (unsigned int fv = 0; fv < 2; ++fv)
@@ -919,8 +932,11 @@ namespace clothsim
             local.potential +=
               physics::pressure_potential_gradient_hessian(
                 parameters.loads.pressure, x, pressure_apex, g_p, nullptr) -
-              physics::pressure_potential_gradient_hessian(
-                parameters.loads.pressure, element.reference, pressure_apex, g_p, nullptr);
+              physics::pressure_potential_gradient_hessian(parameters.loads.pressure,
+                                                           element.reference,
+                                                           pressure_apex,
+                                                           g_p,
+                                                           nullptr);
           }
         const double vertex_mass = rho * element.rest.area / 3.;
         for (unsigned int a = 0; a < 3; ++a)
@@ -993,10 +1009,10 @@ namespace clothsim
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          const Element                   &element = elements[e++];
-          const physics::TrianglePositions x       = current_positions(element, u, u_e);
-          const physics::EdgeDirectors directors = edge_directors(element, u, psi);
-          curvature[cell->active_cell_index()] = physics::curvature_change_norm(
+          const Element                   &element   = elements[e++];
+          const physics::TrianglePositions x         = current_positions(element, u, u_e);
+          const physics::EdgeDirectors     directors = edge_directors(element, u, psi);
+          curvature[cell->active_cell_index()]       = physics::curvature_change_norm(
             bending_material, element.bending_rest, x, directors, psi);
         }
   }

@@ -261,8 +261,9 @@ namespace clothsim
 
     // The element's edge directors (reference vectors, signs) and angles ψ from `u`.
     physics::EdgeDirectors
-    edge_directors(const Element &element, const VectorType &u, physics::EdgeAngles &psi)
-      const;
+    edge_directors(const Element       &element,
+                   const VectorType    &u,
+                   physics::EdgeAngles &psi) const;
 
     // Current vertex positions x = X + u of an element; u_e gets its displacements.
     physics::TrianglePositions

@@ -58,7 +58,7 @@ namespace clothsim
   BlockPreconditioner::initialize(const TrilinosWrappers::SparseMatrix &matrix,
                                   const Teuchos::ParameterList         &ml_parameters)
   {
-    tangent                 = &matrix;
+    tangent                   = &matrix;
     const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
     const Epetra_Map        map =
       block_owned.make_trilinos_map(communicator, /*overlapping=*/false);
@@ -104,7 +104,8 @@ namespace clothsim
       {
         split_row(displacement_local[k], unused_diagonal);
         const int row = first_row + k;
-        block_matrix->InsertGlobalValues(1, &row, columns.size(), columns.data(), entries.data());
+        block_matrix->InsertGlobalValues(
+          1, &row, columns.size(), columns.data(), entries.data());
       }
 
     // D and -B D⁻¹ Bᵀ: each angle row's displacement entries b give -b bᵀ / D_ψψ.

@@ -68,7 +68,8 @@ namespace clothsim
     // Local index and inverse diagonal of every other owned dof.
     std::vector<int>    other_local;
     std::vector<double> other_inverse_diagonal;
-    // Block index of every column (relevant dof) of the tangent, -1 if not a displacement.
+    // Block index of every column (relevant dof) of the tangent, -1 if not a
+    // displacement.
     TrilinosWrappers::MPI::Vector block_index_ghosted;
 
     const TrilinosWrappers::SparseMatrix              *tangent = nullptr;

@@ -42,9 +42,10 @@ namespace clothsim
             direct_problem->SetOperator(
               const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
             Amesos factory;
-            direct_solver.reset(factory.Create(
-              parameters.direct_solver == "mumps" ? "Amesos_Mumps" : "Amesos_Klu",
-              *direct_problem));
+            direct_solver.reset(factory.Create(parameters.direct_solver == "mumps"
+                                                 ? "Amesos_Mumps"
+                                                 : "Amesos_Klu",
+                                               *direct_problem));
             AssertThrow(direct_solver != nullptr,
                         ExcMessage("this Trilinos has no " + parameters.direct_solver));
             Teuchos::ParameterList amesos_parameters;
@@ -61,7 +62,7 @@ namespace clothsim
     // stiffness) stop fitting as the sheet deforms: reuse them only while CG needs at
     // most 30 % more iterations than right after they were built.
     const bool aggregates_fit = last_iterations <= 1.3 * iterations_after_rebuild + 1;
-    const bool block_mode = near_null_space.displacement_dofs.size() > 0;
+    const bool block_mode     = near_null_space.displacement_dofs.size() > 0;
     if (parameters.preconditioner == "amg" && amg != nullptr && !block_mode &&
         parameters.amg_reuse_aggregates && aggregates_fit)
       {
@@ -88,7 +89,8 @@ namespace clothsim
                             unused_constant_modes,
                             matrix.trilinos_matrix());
         ml_parameters.set("PDE equations",
-                          static_cast<int>(block_mode ? 3 : near_null_space.pde_equations));
+                          static_cast<int>(block_mode ? 3
+                                                      : near_null_space.pde_equations));
         ml_parameters.set("null space: type", "pre-computed");
         ml_parameters.set("null space: dimension",
                           static_cast<int>(near_null_space.modes.size()));
@@ -150,9 +152,8 @@ namespace clothsim
             if (!factorization_ok)
               return false;
             direct_problem->SetLHS(&x.trilinos_vector());
-            direct_problem->SetRHS(
-              const_cast<Epetra_MultiVector *>(
-                static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
+            direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
+              static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
             return direct_solver->Solve() == 0;
           }
         if (block_preconditioner && parameters.preconditioner == "amg")

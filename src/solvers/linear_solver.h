@@ -50,8 +50,8 @@ namespace clothsim
           unsigned int                         &iterations) const;
 
   private:
-    const LinearSolverParameters           parameters;
-    const NearNullSpace near_null_space;
+    const LinearSolverParameters parameters;
+    const NearNullSpace          near_null_space;
     std::vector<double> null_space_storage; // the modes column-major, as ML reads them
     std::unique_ptr<TrilinosWrappers::PreconditionBase> preconditioner;
     // The AMG hierarchy, if `preconditioner` is one: later tangents reuse its aggregates.

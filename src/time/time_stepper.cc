@@ -141,13 +141,13 @@ namespace clothsim
   {
     const bool   dynamic = parameters.time.integrator == Integrator::backward_euler;
     const double end     = dynamic ? parameters.time.end_time : 1.;
-    double nominal_step =
+    double       nominal_step =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
     const bool   adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;
     const double largest_increment   = 4. / parameters.time.load_steps;
-    const double       output_interval = dynamic ? parameters.output.interval : 0.;
-    const unsigned int max_halvings    = parameters.time.max_step_halvings;
-    const double       epsilon         = 1e-9 * nominal_step;
+    const double output_interval     = dynamic ? parameters.output.interval : 0.;
+    const unsigned int max_halvings  = parameters.time.max_step_halvings;
+    const double       epsilon       = 1e-9 * nominal_step;
 
     Timer      wall_clock;
     RunSummary summary;
@@ -223,7 +223,7 @@ namespace clothsim
             last_increment -= u_n;
             last_load_increment = dt_taken;
             u_n                 = u_new;
-            time                  = time_new;
+            time                = time_new;
             ++step;
             // Shell directors: re-base on the converged state (angles back to zero).
             u_ghosted = u_n;

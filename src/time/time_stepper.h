@@ -5,9 +5,9 @@
 //   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} =
 //   (u_{n+1} - u_n)/dt.
 // Static mode: the load factor λ goes 1/N, 2/N, ..., 1 (or adaptive increments); each
-// increment minimises W - λ fᵀ u, starting from the secant predictor along the load path. A step whose Newton solve fails (or whose result holds NaN or a collapsed
-// triangle) is retried with half the step, up to 'Maximum step halvings' times, and the
-// log says so.
+// increment minimises W - λ fᵀ u, starting from the secant predictor along the load path.
+// A step whose Newton solve fails (or whose result holds NaN or a collapsed triangle) is
+// retried with half the step, up to 'Maximum step halvings' times, and the log says so.
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -71,7 +71,7 @@ namespace clothsim
     MatrixType   tangent;
     NewtonSolver newton;
 
-    VectorType u_n, v_n, u_new;                                      // owned
+    VectorType u_n, v_n, u_new; // owned
     // Static mode: the last load increment's displacement change and size, for the
     // secant predictor u_n + (Δλ/Δλ_last) Δu_last.
     VectorType last_increment; // owned
