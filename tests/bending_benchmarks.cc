@@ -62,13 +62,7 @@ namespace
               << std::abs(q.values[level] - q.published) / std::abs(q.published)
               << std::endl;
       }
-    bool passed = true;
-    for (unsigned int level = 1; level < errors.size(); ++level)
-      passed &= test::check_below(pcout,
-                                  q.name + ": error ratio e_" + std::to_string(level) +
-                                    " / e_" + std::to_string(level - 1),
-                                  errors[level] / errors[level - 1],
-                                  1.);
+    bool passed = test::check_decreasing(pcout, q.name, errors);
     passed &= test::check_below(pcout,
                                 q.name + ": relative error vs exact at the finest level",
                                 errors.back(),

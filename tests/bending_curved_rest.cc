@@ -91,37 +91,6 @@ namespace
     return defects;
   }
 
-  // Energy per area of the triangles away from the free straight sides and the arcs (all
-  // three vertices at |θ| < 20° and 0.2 < y < 0.8), from the curvature change norm
-  // sqrt(tr M²) of each triangle: W_T = |T̄| D/2 tr(M²) for ν = 0.
-  double
-  interior_energy_density(const test::SceneRun &run, const double rigidity)
-  {
-    const ClothModel &model = run.model();
-    Vector<double>    curvature;
-    model.cell_curvature_change(run.displacement, curvature);
-    const double max_angle = 20. * numbers::PI / 180.;
-    double       energy = 0., area = 0.;
-    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          bool inside = true;
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const Point<3> &X = cell->vertex(v);
-              inside = inside && std::abs(std::atan2(X[0], X[2])) < max_angle &&
-                       X[1] > 0.2 && X[1] < 0.8;
-            }
-          if (!inside)
-            continue;
-          const double M = curvature[cell->active_cell_index()];
-          energy += 0.5 * rigidity * cell->measure() * M * M;
-          area += cell->measure();
-        }
-    return Utilities::MPI::sum(energy, model.get_communicator()) /
-           Utilities::MPI::sum(area, model.get_communicator());
-  }
-
   // Largest absolute entry of ∇W(u) (internal forces and director moments).
   double
   largest_internal_force(const ClothModel &model, const VectorType &u)
@@ -228,7 +197,16 @@ main(int argc, char **argv)
           if (nu == 0.)
             {
               const double density_ratio =
-                interior_energy_density(run, D) / (0.5 * D / (radius * radius));
+                test::interior_energy_density(run,
+                                              D,
+                                              [](const Point<3> &X) {
+                                                // Away from the free straight sides and
+                                                // the arcs.
+                                                return std::abs(std::atan2(X[0], X[2])) <
+                                                         20. * numbers::PI / 180. &&
+                                                       X[1] > 0.2 && X[1] < 0.8;
+                                              }) /
+                (0.5 * D / (radius * radius));
               interior_errors.push_back(std::abs(density_ratio - 1.));
               pcout << "\n       away from the boundary: energy density ratio "
                     << std::setprecision(8) << density_ratio << ", |ratio - 1| "
@@ -259,21 +237,7 @@ main(int argc, char **argv)
             }
         }
       const std::string name = "flattening, nu = " + std::string(nu == 0. ? "0" : "0.3");
-      for (unsigned int level = 1; level < n_levels; ++level)
-        passed &= test::check_below(pcout,
-                                    name + ": error ratio e_" + std::to_string(level) +
-                                      " / e_" + std::to_string(level - 1),
-                                    errors[level] / errors[level - 1],
-                                    1.);
-      passed &= test::check_above(pcout,
-                                  name + ": observed order at the last pair",
-                                  test::observed_order(errors[n_levels - 2],
-                                                       errors[n_levels - 1]),
-                                  0.8);
-      passed &= test::check_below(pcout,
-                                  name + ": |ratio - 1| at the finest level",
-                                  errors.back(),
-                                  2e-2);
+      passed &= test::check_convergence(pcout, name, errors, 0.8, "|ratio - 1|", 2e-2);
       if (nu == 0.)
         {
           passed &= test::check_above(pcout,

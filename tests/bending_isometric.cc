@@ -85,32 +85,6 @@ namespace
                   (1. + epsilon * epsilon * quadrature.point(q).norm_square());
     return integral;
   }
-
-  // Energy per area of the triangles inside [0.2, 0.8]² (all three vertices), from the
-  // curvature change norm sqrt(tr M²) of each triangle: W_T = |T| D/2 tr(M²) for ν = 0.
-  double
-  interior_energy_density(const test::SceneRun &run, const double rigidity)
-  {
-    const ClothModel &model = run.model();
-    Vector<double>    curvature;
-    model.cell_curvature_change(run.displacement, curvature);
-    double energy = 0., area = 0.;
-    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          bool inside = true;
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int d = 0; d < 2; ++d)
-              inside = inside && cell->vertex(v)[d] > 0.2 && cell->vertex(v)[d] < 0.8;
-          if (!inside)
-            continue;
-          const double M = curvature[cell->active_cell_index()];
-          energy += 0.5 * rigidity * cell->measure() * M * M;
-          area += cell->measure();
-        }
-    return Utilities::MPI::sum(energy, model.get_communicator()) /
-           Utilities::MPI::sum(area, model.get_communicator());
-  }
 } // namespace
 
 int
@@ -210,7 +184,13 @@ main(int argc, char **argv)
           if (c.interior)
             {
               const double density_ratio =
-                interior_energy_density(run, D) / (c.exact_energy / area);
+                test::interior_energy_density(run,
+                                              D,
+                                              [](const Point<3> &X) {
+                                                return X[0] > 0.2 && X[0] < 0.8 &&
+                                                       X[1] > 0.2 && X[1] < 0.8;
+                                              }) /
+                (c.exact_energy / area);
               interior_errors.push_back(std::abs(density_ratio - 1.));
               pcout << "\n       inside [0.2, 0.8]²: energy density ratio "
                     << std::setprecision(8) << density_ratio << ", |ratio - 1| "
@@ -235,21 +215,8 @@ main(int argc, char **argv)
                                              "finest level",
                                     interior_errors.back(),
                                     1e-4);
-      for (unsigned int level = 1; level < n_levels; ++level)
-        passed &= test::check_below(pcout,
-                                    c.name + ": error ratio e_" + std::to_string(level) +
-                                      " / e_" + std::to_string(level - 1),
-                                    errors[level] / errors[level - 1],
-                                    1.);
-      passed &= test::check_above(pcout,
-                                  c.name + ": observed order at the last pair",
-                                  test::observed_order(errors[n_levels - 2],
-                                                       errors[n_levels - 1]),
-                                  0.8);
-      passed &= test::check_below(pcout,
-                                  c.name + ": |ratio - 1| at the finest level",
-                                  errors.back(),
-                                  c.finest_bound);
+      passed &= test::check_convergence(
+        pcout, c.name, errors, 0.8, "|ratio - 1|", c.finest_bound);
     }
   pcout << (passed ? "PASSED" : "FAILED") << std::endl;
   return passed ? 0 : 1;

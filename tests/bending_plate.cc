@@ -99,21 +99,8 @@ main(int argc, char **argv)
                   << test::observed_order(errors[level - 1], errors[level]);
           pcout << std::endl;
         }
-      for (unsigned int level = 1; level < n_levels; ++level)
-        passed &= test::check_below(pcout,
-                                    c.name + ": error ratio e_" + std::to_string(level) +
-                                      " / e_" + std::to_string(level - 1),
-                                    errors[level] / errors[level - 1],
-                                    1.);
-      passed &= test::check_above(pcout,
-                                  c.name + ": observed order at the last pair",
-                                  test::observed_order(errors[n_levels - 2],
-                                                       errors[n_levels - 1]),
-                                  1.5);
-      passed &= test::check_below(pcout,
-                                  c.name + ": relative error at the finest level",
-                                  errors.back(),
-                                  c.finest_bound);
+      passed &= test::check_convergence(
+        pcout, c.name, errors, 1.5, "relative error", c.finest_bound);
     }
   pcout << (passed ? "PASSED" : "FAILED") << std::endl;
   return passed ? 0 : 1;

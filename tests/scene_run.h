@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -97,6 +98,34 @@ namespace clothsim::test
     return run;
   }
 
+  // Bending energy per area of the triangles whose three reference vertices satisfy
+  // `inside`, from each triangle's curvature change norm sqrt(tr M²): W_T = |T̄| D/2
+  // tr(M²), exact for ν = 0.
+  inline double
+  interior_energy_density(const SceneRun                              &run,
+                          const double                                 rigidity,
+                          const std::function<bool(const Point<3> &)> &inside)
+  {
+    const ClothModel &model = run.model();
+    Vector<double>    curvature;
+    model.cell_curvature_change(run.displacement, curvature);
+    double energy = 0., area = 0.;
+    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          bool all_inside = true;
+          for (const unsigned int v : cell->vertex_indices())
+            all_inside = all_inside && inside(cell->vertex(v));
+          if (!all_inside)
+            continue;
+          const double M = curvature[cell->active_cell_index()];
+          energy += 0.5 * rigidity * cell->measure() * M * M;
+          area += cell->measure();
+        }
+    return Utilities::MPI::sum(energy, model.get_communicator()) /
+           Utilities::MPI::sum(area, model.get_communicator());
+  }
+
   // Observed order of convergence between two successive levels (mesh size halved).
   inline double
   observed_order(const double coarse_error, const double fine_error)
@@ -128,6 +157,45 @@ namespace clothsim::test
     const bool holds = value > bound;
     out << (holds ? "  ok    " : "  FAIL  ") << what << ": " << std::setprecision(6)
         << value << " > " << bound << std::endl;
+    return holds;
+  }
+
+  // Errors of successive refinement levels: each smaller than the one before.
+  inline bool
+  check_decreasing(ConditionalOStream        &out,
+                   const std::string         &name,
+                   const std::vector<double> &errors)
+  {
+    bool holds = true;
+    for (unsigned int level = 1; level < errors.size(); ++level)
+      holds &= check_below(out,
+                           name + ": error ratio e_" + std::to_string(level) + " / e_" +
+                             std::to_string(level - 1),
+                           errors[level] / errors[level - 1],
+                           1.);
+    return holds;
+  }
+
+  // A convergence study: errors decreasing, observed order at the last pair at least
+  // `order`, and the finest error (described by `finest`) below `bound`.
+  inline bool
+  check_convergence(ConditionalOStream        &out,
+                    const std::string         &name,
+                    const std::vector<double> &errors,
+                    const double               order,
+                    const std::string         &finest,
+                    const double               bound)
+  {
+    const unsigned int n     = errors.size();
+    bool               holds = check_decreasing(out, name, errors);
+    holds &= check_above(out,
+                         name + ": observed order at the last pair",
+                         observed_order(errors[n - 2], errors[n - 1]),
+                         order);
+    holds &= check_below(out,
+                         name + ": " + finest + " at the finest level",
+                         errors.back(),
+                         bound);
     return holds;
   }
 } // namespace clothsim::test
