@@ -733,8 +733,7 @@ namespace clothsim
       }
 
     // Point and line forces: -λ f_extᵀ u.
-    for (const types::global_dof_index i : locally_owned_dofs)
-      value -= terms.load_factor * external_forces[i] * u[i];
+    value -= terms.load_factor * local_external_work(u);
     if (gradient != nullptr)
       {
         gradient->compress(VectorOperation::add);
@@ -779,6 +778,18 @@ namespace clothsim
           u[edge.angle_dof] = 0.;
       }
     u.compress(VectorOperation::insert);
+  }
+
+
+  double
+  ClothModel::local_external_work(const VectorType &u) const
+  {
+    if (parameters.loads.point_forces.empty() && parameters.loads.line_forces.empty())
+      return 0.;
+    double work = 0.;
+    for (const types::global_dof_index i : locally_owned_dofs)
+      work += external_forces[i] * u[i];
+    return work;
   }
 
 
@@ -949,8 +960,7 @@ namespace clothsim
                                  v_e[3 * a + d] * v_e[3 * b + d];
             }
       }
-    for (const types::global_dof_index i : locally_owned_dofs)
-      local.potential -= external_forces[i] * u[i];
+    local.potential -= local_external_work(u);
     Energies global;
     global.kinetic   = Utilities::MPI::sum(local.kinetic, communicator);
     global.elastic   = Utilities::MPI::sum(local.elastic, communicator);

@@ -259,6 +259,10 @@ namespace clothsim
     void
     resolve_loads(const std::string &parameter_file, const mesh::MeshGroups &groups);
 
+    // f_extᵀ u over the locally owned dofs (J; zero without point and line forces).
+    double
+    local_external_work(const VectorType &u) const;
+
     // The element's edge directors (reference vectors, signs) and angles ψ from `u`.
     physics::EdgeDirectors
     edge_directors(const Element       &element,

@@ -47,13 +47,6 @@ namespace clothsim
   }
 
 
-  long long
-  BlockPreconditioner::block_index(const types::global_dof_index dof) const
-  {
-    return owned.is_element(dof) ? static_cast<long long>(block_index_ghosted(dof)) : -1;
-  }
-
-
   void
   BlockPreconditioner::initialize(const TrilinosWrappers::SparseMatrix &matrix,
                                   const Teuchos::ParameterList         &ml_parameters)
@@ -67,6 +60,12 @@ namespace clothsim
       {
         full_in.reinit(owned, communicator);
         full_out.reinit(owned, communicator);
+      }
+    if (column_block.size() != static_cast<std::size_t>(A.NumMyCols()))
+      {
+        column_block.resize(A.NumMyCols());
+        for (int c = 0; c < A.NumMyCols(); ++c)
+          column_block[c] = static_cast<int>(block_index_ghosted(A.ColMap().GID(c)));
       }
 
     // The row of the tangent with local index `row`, split into displacement columns
@@ -84,13 +83,11 @@ namespace clothsim
       diagonal = 0.;
       for (int e = 0; e < n; ++e)
         {
-          const int    gid    = A.ColMap().GID(indices[e]);
-          const double column = block_index_ghosted(gid);
-          if (gid == row_gid)
+          if (A.ColMap().GID(indices[e]) == row_gid)
             diagonal = values[e];
-          if (column >= 0.)
+          if (column_block[indices[e]] >= 0)
             {
-              columns.push_back(static_cast<int>(column));
+              columns.push_back(column_block[indices[e]]);
               entries.push_back(values[e]);
             }
         }

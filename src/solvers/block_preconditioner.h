@@ -38,16 +38,6 @@ namespace clothsim
                         const IndexSet &displacement_dofs,
                         const MPI_Comm  communicator);
 
-    // The layout of the displacement block (for its near-null space).
-    const IndexSet &
-    block_dofs() const
-    {
-      return block_owned;
-    }
-    // Position of owned dof `dof` in the displacement block's numbering (-1: none).
-    long long
-    block_index(const types::global_dof_index dof) const;
-
     // Builds D and S̃ from `matrix` (kept by reference for the products with B) and the
     // AMG hierarchy of S̃ with `ml_parameters` (null space vectors in the block's local
     // numbering).
@@ -69,8 +59,10 @@ namespace clothsim
     std::vector<int>    other_local;
     std::vector<double> other_inverse_diagonal;
     // Block index of every column (relevant dof) of the tangent, -1 if not a
-    // displacement.
+    // displacement; and the same by the tangent's local column index (its sparsity never
+    // changes).
     TrilinosWrappers::MPI::Vector block_index_ghosted;
+    std::vector<int>              column_block;
 
     const TrilinosWrappers::SparseMatrix              *tangent = nullptr;
     std::unique_ptr<Epetra_FECrsMatrix>                block_matrix; // S̃
