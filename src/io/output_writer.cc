@@ -44,6 +44,8 @@ namespace clothsim
   {
     if (write_vtk)
       write_vtk_frame(time, u, v);
+    if (frame_observer)
+      frame_observer(time, u);
 
     std::vector<types::global_dof_index> dofs;
     for (const ProbeLocation &probe : probes)
@@ -104,10 +106,19 @@ namespace clothsim
                              model.component_names("velocity"),
                              DataOut<2, 3>::type_dof_data,
                              vector_field);
-    Vector<double> strain, stress;
+    Vector<double> strain, stress, edge_strain;
     model.cell_strain_stress(u, strain, stress);
     data_out.add_data_vector(strain, "green_strain", DataOut<2, 3>::type_cell_data);
-    data_out.add_data_vector(stress, "membrane_stress", DataOut<2, 3>::type_cell_data);
+    if (model.uses_springs())
+      {
+        // The springs' stress is not the continuum's: show their strain instead.
+        model.cell_edge_strain(u, edge_strain);
+        data_out.add_data_vector(edge_strain,
+                                 "spring_strain",
+                                 DataOut<2, 3>::type_cell_data);
+      }
+    else
+      data_out.add_data_vector(stress, "membrane_stress", DataOut<2, 3>::type_cell_data);
     Vector<double> curvature;
     if (model.has_bending())
       {

@@ -11,6 +11,7 @@
 #include "scene/cloth_model.h"
 
 #include <fstream>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +50,14 @@ namespace clothsim
     void
     write_statistics(const StepStatistics &row);
 
+    // Called with every written state (time, ghosted displacement), e.g. to compare runs.
+    using FrameObserver = std::function<void(const double time, const VectorType &u)>;
+    void
+    set_frame_observer(const FrameObserver &observer)
+    {
+      frame_observer = observer;
+    }
+
   private:
     void
     write_vtk_frame(const double time, const VectorType &u, const VectorType &v);
@@ -61,5 +70,6 @@ namespace clothsim
     std::ofstream                               probes_csv;
     std::ofstream                               statistics_csv;
     std::vector<std::pair<double, std::string>> frames;
+    FrameObserver                               frame_observer;
   };
 } // namespace clothsim

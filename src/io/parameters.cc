@@ -1,6 +1,7 @@
 #include "io/parameters.h"
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/numbers.h>
 #include <deal.II/base/utilities.h>
 
 #include "io/input_error.h"
@@ -132,6 +133,13 @@ namespace clothsim
       Patterns::Anything(),
       "Name of the run; output goes to output/<Scene name>/ unless --output-dir "
       "is given. Empty: the parameter file's name without extension.");
+    prm.declare_entry("Model",
+                      "fem",
+                      Patterns::Selection("fem|mass-spring"),
+                      "How the cloth's elasticity is discretised: 'fem' (membrane finite "
+                      "elements, plus the shell's bending if Material/Bending is set) or "
+                      "'mass-spring' (Provot's springs on the same mesh, constants from "
+                      "Material or given in 'Mass spring'; see physics/mass_spring.h).");
     prm.enter_subsection("Mesh");
     prm.declare_entry(
       "Mesh file",
@@ -166,7 +174,8 @@ namespace clothsim
   void
   SceneParameters::parse_parameters(ParameterHandler &prm)
   {
-    name = prm.get("Scene name");
+    name  = prm.get("Scene name");
+    model = prm.get("Model") == "mass-spring" ? Model::mass_spring : Model::fem;
     prm.enter_subsection("Mesh");
     mesh_file          = prm.get("Mesh file");
     global_refinements = prm.get_integer("Global refinements");
@@ -265,6 +274,85 @@ namespace clothsim
                            (12. * (1. - poisson_ratio * poisson_ratio));
       }
     director_function = prm.get("Director function");
+    prm.leave_subsection();
+  }
+
+
+  void
+  MassSpringParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mass spring");
+    prm.declare_entry(
+      "Spring constants",
+      "derived",
+      Patterns::Selection("derived|given"),
+      "'derived': from Material, so that both models describe the same cloth: "
+      "structural springs k_e = 8/(9(1-nu^2)) E h sum|T|/L^2 over the edge's "
+      "triangles, bend springs from the bending rigidity D (none without "
+      "Material/Bending), no separate shear springs (the triangles' edges resist "
+      "shear). 'given': the three stiffnesses below, the same on every spring, as "
+      "in classic Provot scenes. Formulas and their limits: physics/mass_spring.h.");
+    prm.declare_entry("Structural stiffness",
+                      "100",
+                      Patterns::Double(0., 1e15),
+                      "'given': stiffness in N/m of the spring on every mesh edge.");
+    prm.declare_entry(
+      "Shear stiffness",
+      "0",
+      Patterns::Double(0., 1e15),
+      "'given': stiffness in N/m of the spring across every interior edge "
+      "(between the two vertices opposite it), added to 'Bend stiffness'.");
+    prm.declare_entry(
+      "Bend stiffness",
+      "0",
+      Patterns::Double(0., 1e15),
+      "'given': stiffness in N/m of the spring across every interior edge.");
+    prm.declare_entry(
+      "Bend reference angle",
+      "10",
+      Patterns::Double(1e-3, 90.),
+      "'derived': fold angle (degrees) at which a bend spring's energy equals the "
+      "continuum's hinge energy D L^2/(2(A1+A2)) theta^2; softer below, stiffer "
+      "above (a spring's bending energy grows like theta^4).");
+    prm.declare_entry(
+      "Strain limit",
+      "0",
+      Patterns::Double(0., 10.),
+      "Provot's deformation limit: after every step, structural springs "
+      "stretched by more than this strain (l - L)/L are shortened back to it, "
+      "moving both ends by their inverse masses, and the velocities follow. "
+      "0: off; 0.1 is Provot's 10 %. Dynamic runs only.");
+    prm.declare_entry("Strain limit compression",
+                      "false",
+                      Patterns::Bool(),
+                      "Also lengthen springs compressed by more than 'Strain limit'.");
+    prm.declare_entry(
+      "Strain limit iterations",
+      "10",
+      Patterns::Integer(1, 1000),
+      "Correction sweeps per step at most (each sweep corrects all springs at "
+      "once and averages the moves of shared vertices); a warning tells when "
+      "springs remain beyond the limit.");
+    prm.leave_subsection();
+  }
+
+  void
+  MassSpringParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mass spring");
+    derived_constants       = prm.get("Spring constants") == "derived";
+    structural_stiffness    = prm.get_double("Structural stiffness");
+    shear_stiffness         = prm.get_double("Shear stiffness");
+    bend_stiffness          = prm.get_double("Bend stiffness");
+    bend_reference_angle    = prm.get_double("Bend reference angle") * numbers::PI / 180.;
+    strain_limit            = prm.get_double("Strain limit");
+    limit_compression       = prm.get_bool("Strain limit compression");
+    strain_limit_iterations = prm.get_integer("Strain limit iterations");
+    if (!derived_constants && structural_stiffness == 0.)
+      throw InputError("",
+                       "Mass spring/Structural stiffness",
+                       "must be positive: without structural springs the mesh's "
+                       "vertices are not held together");
     prm.leave_subsection();
   }
 
@@ -421,10 +509,15 @@ namespace clothsim
     prm.declare_entry(
       "Integrator",
       "backward euler",
-      Patterns::Selection("backward euler|static"),
+      Patterns::Selection("backward euler|static|symplectic euler|velocity verlet"),
       "'backward euler': implicit dynamics, each step the minimiser of the "
       "incremental potential. 'static': equilibrium under loads ramped in "
-      "'Load steps' equal increments (time = load factor 0..1).");
+      "'Load steps' equal increments (time = load factor 0..1). 'symplectic "
+      "euler' (v first, then x; first order) and 'velocity verlet' (second "
+      "order): explicit, one force evaluation per step, stable only below the "
+      "critical step 2/omega_max, which the run estimates and prints (a warning "
+      "if 'Time step' exceeds it); they need a lumped mass on every unknown "
+      "(Model = mass-spring, or fem without bending).");
     prm.declare_entry("End time", "2", Patterns::Double(0., 1e9), "Simulated time in s.");
     prm.declare_entry("Time step",
                       "0.0166666666666667",
@@ -455,13 +548,16 @@ namespace clothsim
   TimeParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time");
-    integrator        = prm.get("Integrator") == "static" ? Integrator::static_load_steps
+    const std::string name = prm.get("Integrator");
+    integrator             = name == "static"             ? Integrator::static_load_steps
+                             : name == "symplectic euler" ? Integrator::symplectic_euler
+                             : name == "velocity verlet"  ? Integrator::velocity_verlet
                                                           : Integrator::backward_euler;
-    end_time          = prm.get_double("End time");
-    time_step         = prm.get_double("Time step");
-    max_step_halvings = prm.get_integer("Maximum step halvings");
-    load_steps        = prm.get_integer("Load steps");
-    adaptive_load_steps = prm.get_bool("Adaptive load steps");
+    end_time               = prm.get_double("End time");
+    time_step              = prm.get_double("Time step");
+    max_step_halvings      = prm.get_integer("Maximum step halvings");
+    load_steps             = prm.get_integer("Load steps");
+    adaptive_load_steps    = prm.get_bool("Adaptive load steps");
     prm.leave_subsection();
   }
 
@@ -673,6 +769,7 @@ namespace clothsim
   {
     SceneParameters::declare_parameters(prm);
     MaterialParameters::declare_parameters(prm);
+    MassSpringParameters::declare_parameters(prm);
     DampingParameters::declare_parameters(prm);
     LoadParameters::declare_parameters(prm);
     ConstraintParameters::declare_parameters(prm);
@@ -687,6 +784,7 @@ namespace clothsim
   {
     scene.parse_parameters(prm);
     material.parse_parameters(prm);
+    mass_spring.parse_parameters(prm);
     damping.parse_parameters(prm);
     loads.parse_parameters(prm);
     constraints.parse_parameters(prm);
@@ -829,6 +927,31 @@ namespace clothsim
       }
 
     // Checks that patterns cannot express.
+    const Parameters &parameters  = input.parameters;
+    const bool        mass_spring = parameters.scene.model == Model::mass_spring;
+    if (is_explicit(parameters.time.integrator))
+      {
+        if (parameters.material.bending && !mass_spring)
+          throw InputError(file,
+                           "Time/Integrator",
+                           "explicit integrators need a mass on every unknown; the "
+                           "shell's director angles have none: use 'backward "
+                           "euler', or 'Model = mass-spring'");
+        if (!parameters.material.lumped_mass)
+          throw InputError(file,
+                           "Time/Integrator",
+                           "explicit integrators need 'Material/Mass = lumped'");
+      }
+    if (mass_spring && !parameters.material.lumped_mass)
+      throw InputError(file,
+                       "Material/Mass",
+                       "the mass-spring model has lumped masses only; set 'lumped'");
+    if (parameters.mass_spring.strain_limit > 0. &&
+        (!mass_spring || parameters.time.integrator == Integrator::static_load_steps))
+      throw InputError(file,
+                       "Mass spring/Strain limit",
+                       "the strain limit corrects dynamic steps of the mass-spring "
+                       "model only; set it to 0");
     for (const Probe &probe : input.parameters.output.probes)
       if (probe.name.empty() || probe.name.find(',') != std::string::npos)
         throw InputError(file,

@@ -16,9 +16,17 @@ namespace clothsim
 {
   using namespace dealii;
 
+  // The discretisation of the cloth's elasticity.
+  enum class Model
+  {
+    fem,        // membrane (and shell bending) finite elements
+    mass_spring // Provot's springs on the mesh's edges (physics/mass_spring.h)
+  };
+
   struct SceneParameters
   {
-    std::string  name;               // output/<name>/; empty: the parameter file's stem
+    std::string  name; // output/<name>/; empty: the parameter file's stem
+    Model        model;
     std::string  mesh_file;          // relative to the parameter file's directory
     unsigned int global_refinements; // uniform refinements of the mesh as read
     // Exact rest surface onto which refinement projects new vertices.
@@ -41,6 +49,24 @@ namespace clothsim
     bool        bending;           // assemble the bending energy
     double      bending_rigidity;  // D, N·m (derived when given as E and thickness)
     std::string director_function; // "angle", "sine", "tangent" (see physics/bending.h)
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  // The mass-spring model's springs (used when Model = mass-spring).
+  struct MassSpringParameters
+  {
+    bool         derived_constants;    // from Material (true) or given below (false)
+    double       structural_stiffness; // N/m, given: every mesh edge
+    double       shear_stiffness;      // N/m, given: across every interior edge
+    double       bend_stiffness;       // N/m, given: across every interior edge
+    double       bend_reference_angle; // rad, derived bend springs match the hinge here
+    double       strain_limit;         // Provot's limit on (l - L)/L; 0: off
+    bool         limit_compression;    // also keep (l - L)/L >= -limit
+    unsigned int strain_limit_iterations; // correction sweeps per step
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -102,8 +128,18 @@ namespace clothsim
   enum class Integrator
   {
     backward_euler,
-    static_load_steps
+    static_load_steps,
+    symplectic_euler, // explicit
+    velocity_verlet   // explicit
   };
+
+  // Explicit integrators take no Newton solve: a step is a force evaluation.
+  inline bool
+  is_explicit(const Integrator integrator)
+  {
+    return integrator == Integrator::symplectic_euler ||
+           integrator == Integrator::velocity_verlet;
+  }
 
   struct TimeParameters
   {
@@ -178,6 +214,7 @@ namespace clothsim
   {
     SceneParameters           scene;
     MaterialParameters        material;
+    MassSpringParameters      mass_spring;
     DampingParameters         damping;
     LoadParameters            loads;
     ConstraintParameters      constraints;

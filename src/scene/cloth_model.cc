@@ -27,7 +27,7 @@ namespace clothsim
     : communicator(communicator)
     , parameters(parameters)
     , triangulation(communicator)
-    , fe(parameters.material.bending
+    , fe(parameters.material.bending && parameters.scene.model == Model::fem
            ? std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1),
                                               3,
                                               FE_SimplexP<2, 3>(2),
@@ -45,7 +45,8 @@ namespace clothsim
       : parameters.material.director_function == "tangent"
         ? physics::DirectorFunction::tangent
         : physics::DirectorFunction::angle;
-    if (!parameters.constraints.clamped_groups.empty() && !parameters.material.bending)
+    if (!parameters.constraints.clamped_groups.empty() && !parameters.material.bending &&
+        !uses_springs())
       throw InputError(parameter_file,
                        "Constraints/Clamped groups",
                        "clamping holds the shell's rotation, which only exists with "
@@ -54,6 +55,22 @@ namespace clothsim
     setup_dofs();
     resolve_pinned(parameter_file, groups);
     resolve_loads(parameter_file, groups);
+    if (uses_springs())
+      {
+        springs = std::make_unique<SpringNetwork>(dof_handler, parameters);
+        VectorType masses;
+        lumped_masses(masses);
+        for (const PinnedDof &pin : pinned)
+          if (locally_owned_dofs.is_element(pin.dof))
+            masses[pin.dof] = 0.;
+        masses.compress(VectorOperation::insert);
+        VectorType inverse(masses);
+        for (const types::global_dof_index i : locally_owned_dofs)
+          inverse[i] = masses[i] > 0. ? 1. / masses[i] : 0.;
+        inverse.compress(VectorOperation::insert);
+        initialize_ghosted(inverse_masses);
+        inverse_masses = inverse;
+      }
   }
 
 
@@ -444,6 +461,8 @@ namespace clothsim
                                                locally_relevant_dofs,
                                                communicator);
     DoFTools::make_sparsity_pattern(dof_handler, sparsity, constraints, false);
+    if (springs)
+      springs->add_sparsity(sparsity, constraints);
     sparsity.compress();
     matrix.reinit(sparsity);
   }
@@ -510,6 +529,11 @@ namespace clothsim
         damping_tangents.clear();
         return;
       }
+    if (springs)
+      {
+        springs->prepare_damping(u_n);
+        return;
+      }
     damping_tangents.resize(elements.size());
     std::array<double, 9>  u_e;
     physics::ElementVector gradient;
@@ -567,7 +591,8 @@ namespace clothsim
     const bool   use_damping  = terms.damping_weight > 0. && (alpha > 0. || beta > 0.);
     Assert(!use_inertia || terms.predictor != nullptr, ExcInternalError());
     Assert(!use_damping || terms.previous != nullptr, ExcInternalError());
-    Assert(beta == 0. || damping_tangents.size() == elements.size(), ExcInternalError());
+    Assert(beta == 0. || springs || damping_tangents.size() == elements.size(),
+           ExcInternalError());
 
     if (gradient != nullptr)
       *gradient = 0.;
@@ -591,8 +616,14 @@ namespace clothsim
         const Element                   &element = elements[e];
         const physics::TrianglePositions x       = current_positions(element, u, u_e);
 
-        // Membrane energy W_e.
-        if (gradient != nullptr || hessian != nullptr)
+        // Membrane energy W_e (the springs replace it in the mass-spring model).
+        if (springs)
+          {
+            g_e.fill(0.);
+            for (auto &row : H_e)
+              row.fill(0.);
+          }
+        else if (gradient != nullptr || hessian != nullptr)
           value +=
             physics::membrane_energy_gradient_hessian(material,
                                                       element.rest,
@@ -651,7 +682,7 @@ namespace clothsim
                 }
             }
 
-        if (use_damping && beta > 0.)
+        if (use_damping && beta > 0. && !springs)
           {
             const physics::ElementMatrix &K = damping_tangents[e];
             const double                  c = terms.damping_weight * beta;
@@ -731,6 +762,15 @@ namespace clothsim
             constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
           }
       }
+
+    if (springs)
+      value += springs->add_to_potential(u,
+                                         terms.projected_tangent,
+                                         use_damping ? terms.damping_weight * beta : 0.,
+                                         terms.previous,
+                                         constraints,
+                                         gradient,
+                                         hessian);
 
     // Point and line forces: -λ f_extᵀ u.
     value -= terms.load_factor * local_external_work(u);
@@ -881,6 +921,13 @@ namespace clothsim
     physics::ElementVector g_e;
     physics::BendingVector g_b;
     physics::EdgeAngles    psi;
+    if (springs)
+      {
+        springs->add_to_potential(
+          u, true, 0., nullptr, AffineConstraints<double>(), &forces, nullptr);
+        forces.compress(VectorOperation::add);
+        return;
+      }
     for (const Element &element : elements)
       {
         const physics::TrianglePositions x = current_positions(element, u, u_e);
@@ -929,7 +976,8 @@ namespace clothsim
       {
         const physics::TrianglePositions x = current_positions(element, u, u_e);
         gather(v, element.dofs, v_e);
-        local.elastic += physics::membrane_energy(material, element.rest, x);
+        if (!springs)
+          local.elastic += physics::membrane_energy(material, element.rest, x);
         if (has_bending())
           {
             const physics::EdgeDirectors directors = edge_directors(element, u, psi);
@@ -961,6 +1009,8 @@ namespace clothsim
             }
       }
     local.potential -= local_external_work(u);
+    if (springs)
+      local.elastic += springs->energy(u);
     Energies global;
     global.kinetic   = Utilities::MPI::sum(local.kinetic, communicator);
     global.elastic   = Utilities::MPI::sum(local.elastic, communicator);
@@ -982,6 +1032,145 @@ namespace clothsim
         smallest = std::min(smallest, std::isfinite(ratio) ? ratio : -1.);
       }
     return Utilities::MPI::min(smallest, communicator);
+  }
+
+
+  double
+  ClothModel::max_area_ratio(const VectorType &u) const
+  {
+    std::array<double, 9> u_e;
+    double                largest = 0.;
+    for (const Element &element : elements)
+      {
+        const physics::TrianglePositions x = current_positions(element, u, u_e);
+        const double                     ratio =
+          physics::membrane_strain_stress(material, element.rest, x).area_ratio;
+        largest =
+          std::max(largest,
+                   std::isfinite(ratio) ? ratio
+                                        : std::numeric_limits<double>::infinity());
+      }
+    return Utilities::MPI::max(largest, communicator);
+  }
+
+
+  void
+  ClothModel::lumped_masses(VectorType &masses) const
+  {
+    initialize_owned(masses);
+    const double rho = parameters.material.areal_density;
+    for (const Element &element : elements)
+      {
+        const std::vector<types::global_dof_index> dofs(element.dofs.begin(),
+                                                        element.dofs.end());
+        const std::vector<double> values(9, rho * element.rest.area / 3.);
+        masses.add(dofs, values);
+      }
+    masses.compress(VectorOperation::add);
+  }
+
+
+  types::global_dof_index
+  ClothModel::limit_strain(VectorType &u, VectorType &v, const double dt) const
+  {
+    const MassSpringParameters &limits = parameters.mass_spring;
+    Assert(springs != nullptr, ExcInternalError());
+    if (limits.strain_limit == 0.)
+      return 0;
+    VectorType u_ghosted, moves, counts;
+    initialize_ghosted(u_ghosted);
+    initialize_owned(moves);
+    initialize_owned(counts);
+    types::global_dof_index violations = 0;
+    for (unsigned int sweep = 0; sweep <= limits.strain_limit_iterations; ++sweep)
+      {
+        u_ghosted = u;
+        moves     = 0.;
+        counts    = 0.;
+        violations =
+          Utilities::MPI::sum(static_cast<types::global_dof_index>(
+                                springs->add_strain_limit_moves(u_ghosted,
+                                                                inverse_masses,
+                                                                limits.strain_limit,
+                                                                limits.limit_compression,
+                                                                moves,
+                                                                counts)),
+                              communicator);
+        if (violations == 0 || sweep == limits.strain_limit_iterations)
+          break;
+        moves.compress(VectorOperation::add);
+        counts.compress(VectorOperation::add);
+        // Each vertex takes the average of its springs' moves (Jacobi).
+        for (const types::global_dof_index i : locally_owned_dofs)
+          if (counts[i] > 0.)
+            {
+              const double move = moves[i] / counts[i];
+              u[i] += move;
+              v[i] += move / dt;
+            }
+        u.compress(VectorOperation::insert);
+        v.compress(VectorOperation::insert);
+      }
+    return violations;
+  }
+
+
+  std::vector<std::array<double, 6>>
+  ClothModel::vertex_displacements(const VectorType &u) const
+  {
+    std::vector<std::array<double, 6>> local;
+    std::set<types::global_dof_index>  seen;
+    for (const Element &element : elements)
+      for (unsigned int v = 0; v < 3; ++v)
+        if (locally_owned_dofs.is_element(element.dofs[3 * v]) &&
+            seen.insert(element.dofs[3 * v]).second)
+          {
+            std::array<double, 6> row;
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                row[d]     = element.reference[v][d];
+                row[3 + d] = u(element.dofs[3 * v + d]);
+              }
+            local.push_back(row);
+          }
+    const auto gathered = Utilities::MPI::gather(communicator, local, 0);
+    std::vector<std::array<double, 6>> all;
+    for (const auto &part : gathered)
+      all.insert(all.end(), part.begin(), part.end());
+    std::sort(all.begin(), all.end(), [](const auto &a, const auto &b) {
+      return std::lexicographical_compare(a.begin(),
+                                          a.begin() + 3,
+                                          b.begin(),
+                                          b.begin() + 3);
+    });
+    return all;
+  }
+
+
+  void
+  ClothModel::cell_edge_strain(const VectorType &u, Vector<double> &strain) const
+  {
+    strain.reinit(triangulation.n_active_cells());
+    std::array<double, 9> u_e;
+    unsigned int          e = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const Element                   &element = elements[e++];
+          const physics::TrianglePositions x       = current_positions(element, u, u_e);
+          double                           largest = 0.;
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              const unsigned int a = (i + 1) % 3, b = (i + 2) % 3;
+              const double       edge_strain =
+                (x[b] - x[a]).norm() /
+                  (element.reference[b] - element.reference[a]).norm() -
+                1.;
+              if (std::abs(edge_strain) > std::abs(largest))
+                largest = edge_strain;
+            }
+          strain[cell->active_cell_index()] = largest;
+        }
   }
 
 

@@ -38,6 +38,7 @@
 #include "physics/bending.h"
 #include "physics/membrane.h"
 #include "physics/pressure.h"
+#include "scene/spring_network.h"
 #include "solvers/linear_solver.h"
 
 #include <array>
@@ -135,10 +136,24 @@ namespace clothsim
     {
       return vertex_count;
     }
+    // The shell's bending unknowns (director angles) exist: FEM with Material/Bending.
     bool
     has_bending() const
     {
-      return parameters.material.bending;
+      return parameters.material.bending && !uses_springs();
+    }
+    // Model = mass-spring: springs replace the membrane and bending elements.
+    bool
+    uses_springs() const
+    {
+      return parameters.scene.model == Model::mass_spring;
+    }
+    // The springs (only with uses_springs()).
+    const SpringNetwork &
+    get_springs() const
+    {
+      Assert(springs != nullptr, ExcInternalError());
+      return *springs;
     }
     // Names of the solution's components for output: displacement (3), director angle.
     std::vector<std::string>
@@ -191,12 +206,32 @@ namespace clothsim
     double
     min_area_ratio(const VectorType &u) const;
 
+    // Largest current/reference area ratio over all triangles (blow-up detection).
+    double
+    max_area_ratio(const VectorType &u) const;
+
+    // The lumped mass of every dof's vertex (owned vector, kg; zero on angle dofs).
+    void
+    lumped_masses(VectorType &masses) const;
+
+    // Provot's strain limit after a dynamic step (mass-spring only): moves the vertices
+    // of structural springs stretched beyond the limit in Jacobi sweeps (at most 'Strain
+    // limit iterations'), and adds move/dt to the velocities. `u`, `v` owned. Returns the
+    // number of springs still beyond the limit (0 when it converged).
+    types::global_dof_index
+    limit_strain(VectorType &u, VectorType &v, const double dt) const;
+
     // Per locally owned cell (indexed by active_cell_index): Green strain and stress
     // norms.
     void
     cell_strain_stress(const VectorType &u,
                        Vector<double>   &strain,
                        Vector<double>   &stress) const;
+
+    // Per locally owned cell: the strain (l - L)/L of its edge with the largest |strain|
+    // (the structural springs' strain in the mass-spring model).
+    void
+    cell_edge_strain(const VectorType &u, Vector<double> &strain) const;
 
     // Per locally owned cell: norm of the curvature change |Ā⁻¹(b - B̄)| (1/m); zero
     // without bending.
@@ -206,6 +241,11 @@ namespace clothsim
     // Snaps each probe to the nearest vertex (the same on every rank).
     std::vector<ProbeLocation>
     locate_probes(const std::vector<Probe> &probes) const;
+
+    // Every vertex's reference position and displacement (X, Y, Z, ux, uy, uz) from `u`
+    // (ghosted), sorted by reference position, on rank 0 (empty elsewhere).
+    std::vector<std::array<double, 6>>
+    vertex_displacements(const VectorType &u) const;
 
     // Values of the given dofs of `u` (ghosted) on every rank.
     std::vector<double>
@@ -316,5 +356,8 @@ namespace clothsim
     std::vector<PinnedDof>              pinned;
     mutable FunctionParser<3>           pinned_displacement;
     std::vector<physics::ElementMatrix> damping_tangents; // per element, if β > 0
+    std::unique_ptr<SpringNetwork>      springs;          // Model = mass-spring
+    // Inverse lumped masses (ghosted, 0 on pinned dofs), for the strain limit.
+    VectorType inverse_masses;
   };
 } // namespace clothsim

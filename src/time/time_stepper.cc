@@ -219,7 +219,18 @@ namespace clothsim
                 v_n /= (time_new - time);
               }
             const double dt_taken = time_new - time;
-            last_increment        = u_new;
+            if (dynamic && model.uses_springs() &&
+                parameters.mass_spring.strain_limit > 0.)
+              {
+                TimerOutput::Scope scope(timer, "strain limit");
+                const auto         remaining = model.limit_strain(u_new, v_n, dt_taken);
+                if (remaining > 0)
+                  pcout << "step " << step + 1 << ": " << remaining
+                        << " springs still beyond the strain limit after "
+                        << parameters.mass_spring.strain_limit_iterations << " sweeps"
+                        << std::endl;
+              }
+            last_increment = u_new;
             last_increment -= u_n;
             last_load_increment = dt_taken;
             u_n                 = u_new;

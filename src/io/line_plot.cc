@@ -1,0 +1,630 @@
+// Line plots drawn into an RGB buffer (Bresenham lines, a 5x7 bitmap font with
+// descenders) and written as an 8-bit RGB PNG: signature, IHDR, one zlib-compressed IDAT
+// with filter type 0 on every row, IEND.
+
+#include "io/line_plot.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+namespace clothsim::io
+{
+  namespace
+  {
+    using Color = std::array<unsigned char, 3>;
+
+    constexpr Color black{{0, 0, 0}};
+    constexpr Color white{{255, 255, 255}};
+    constexpr Color grid_grey{{225, 225, 225}};
+
+    // Font for ASCII 32..126: 8 rows per glyph (row 7 only for descenders), one byte per
+    // row, bit 4 the leftmost of 5 columns. Text advances 6 px per character.
+    constexpr int           glyph_rows   = 8;
+    constexpr int           char_advance = 6;
+    constexpr unsigned char font[95][glyph_rows] = {
+      {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00}, // ' '
+      {0x04, 0x04, 0x04, 0x04, 0x04, 0x00, 0x04, 0x00}, // !
+      {0x0A, 0x0A, 0x0A, 0x00, 0x00, 0x00, 0x00, 0x00}, // "
+      {0x0A, 0x0A, 0x1F, 0x0A, 0x1F, 0x0A, 0x0A, 0x00}, // #
+      {0x04, 0x0F, 0x14, 0x0E, 0x05, 0x1E, 0x04, 0x00}, // $
+      {0x18, 0x19, 0x02, 0x04, 0x08, 0x13, 0x03, 0x00}, // %
+      {0x0C, 0x12, 0x14, 0x08, 0x15, 0x12, 0x0D, 0x00}, // &
+      {0x04, 0x04, 0x08, 0x00, 0x00, 0x00, 0x00, 0x00}, // '
+      {0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02, 0x00}, // (
+      {0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08, 0x00}, // )
+      {0x00, 0x04, 0x15, 0x0E, 0x15, 0x04, 0x00, 0x00}, // *
+      {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00, 0x00}, // +
+      {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x04, 0x08}, // ,
+      {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00, 0x00}, // -
+      {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C, 0x00}, // .
+      {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00, 0x00}, // /
+      {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E, 0x00}, // 0
+      {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E, 0x00}, // 1
+      {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F, 0x00}, // 2
+      {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E, 0x00}, // 3
+      {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02, 0x00}, // 4
+      {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E, 0x00}, // 5
+      {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E, 0x00}, // 6
+      {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08, 0x00}, // 7
+      {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E, 0x00}, // 8
+      {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C, 0x00}, // 9
+      {0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x0C, 0x00, 0x00}, // :
+      {0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x0C, 0x04, 0x08}, // ;
+      {0x02, 0x04, 0x08, 0x10, 0x08, 0x04, 0x02, 0x00}, // <
+      {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00, 0x00}, // =
+      {0x08, 0x04, 0x02, 0x01, 0x02, 0x04, 0x08, 0x00}, // >
+      {0x0E, 0x11, 0x01, 0x02, 0x04, 0x00, 0x04, 0x00}, // ?
+      {0x0E, 0x11, 0x01, 0x0D, 0x15, 0x15, 0x0E, 0x00}, // @
+      {0x0E, 0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x00}, // A
+      {0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E, 0x00}, // B
+      {0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E, 0x00}, // C
+      {0x1C, 0x12, 0x11, 0x11, 0x11, 0x12, 0x1C, 0x00}, // D
+      {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F, 0x00}, // E
+      {0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x10, 0x00}, // F
+      {0x0E, 0x11, 0x10, 0x17, 0x11, 0x11, 0x0F, 0x00}, // G
+      {0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11, 0x00}, // H
+      {0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E, 0x00}, // I
+      {0x07, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0C, 0x00}, // J
+      {0x11, 0x12, 0x14, 0x18, 0x14, 0x12, 0x11, 0x00}, // K
+      {0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F, 0x00}, // L
+      {0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11, 0x00}, // M
+      {0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11, 0x00}, // N
+      {0x0E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E, 0x00}, // O
+      {0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10, 0x00}, // P
+      {0x0E, 0x11, 0x11, 0x11, 0x15, 0x12, 0x0D, 0x00}, // Q
+      {0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11, 0x00}, // R
+      {0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E, 0x00}, // S
+      {0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x00}, // T
+      {0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E, 0x00}, // U
+      {0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04, 0x00}, // V
+      {0x11, 0x11, 0x11, 0x15, 0x15, 0x15, 0x0A, 0x00}, // W
+      {0x11, 0x11, 0x0A, 0x04, 0x0A, 0x11, 0x11, 0x00}, // X
+      {0x11, 0x11, 0x11, 0x0A, 0x04, 0x04, 0x04, 0x00}, // Y
+      {0x1F, 0x01, 0x02, 0x04, 0x08, 0x10, 0x1F, 0x00}, // Z
+      {0x0E, 0x08, 0x08, 0x08, 0x08, 0x08, 0x0E, 0x00}, // [
+      {0x00, 0x10, 0x08, 0x04, 0x02, 0x01, 0x00, 0x00}, // backslash
+      {0x0E, 0x02, 0x02, 0x02, 0x02, 0x02, 0x0E, 0x00}, // ]
+      {0x04, 0x0A, 0x11, 0x00, 0x00, 0x00, 0x00, 0x00}, // ^
+      {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F, 0x00}, // _
+      {0x08, 0x04, 0x02, 0x00, 0x00, 0x00, 0x00, 0x00}, // `
+      {0x00, 0x00, 0x0E, 0x01, 0x0F, 0x11, 0x0F, 0x00}, // a
+      {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x1E, 0x00}, // b
+      {0x00, 0x00, 0x0E, 0x10, 0x10, 0x11, 0x0E, 0x00}, // c
+      {0x01, 0x01, 0x0D, 0x13, 0x11, 0x11, 0x0F, 0x00}, // d
+      {0x00, 0x00, 0x0E, 0x11, 0x1F, 0x10, 0x0E, 0x00}, // e
+      {0x06, 0x09, 0x08, 0x1C, 0x08, 0x08, 0x08, 0x00}, // f
+      {0x00, 0x00, 0x0F, 0x11, 0x11, 0x0F, 0x01, 0x0E}, // g
+      {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x11, 0x00}, // h
+      {0x04, 0x00, 0x0C, 0x04, 0x04, 0x04, 0x0E, 0x00}, // i
+      {0x02, 0x00, 0x06, 0x02, 0x02, 0x02, 0x12, 0x0C}, // j
+      {0x10, 0x10, 0x12, 0x14, 0x18, 0x14, 0x12, 0x00}, // k
+      {0x0C, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E, 0x00}, // l
+      {0x00, 0x00, 0x1A, 0x15, 0x15, 0x11, 0x11, 0x00}, // m
+      {0x00, 0x00, 0x16, 0x19, 0x11, 0x11, 0x11, 0x00}, // n
+      {0x00, 0x00, 0x0E, 0x11, 0x11, 0x11, 0x0E, 0x00}, // o
+      {0x00, 0x00, 0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10}, // p
+      {0x00, 0x00, 0x0F, 0x11, 0x11, 0x0F, 0x01, 0x01}, // q
+      {0x00, 0x00, 0x16, 0x19, 0x10, 0x10, 0x10, 0x00}, // r
+      {0x00, 0x00, 0x0E, 0x10, 0x0E, 0x01, 0x1E, 0x00}, // s
+      {0x08, 0x08, 0x1C, 0x08, 0x08, 0x09, 0x06, 0x00}, // t
+      {0x00, 0x00, 0x11, 0x11, 0x11, 0x13, 0x0D, 0x00}, // u
+      {0x00, 0x00, 0x11, 0x11, 0x11, 0x0A, 0x04, 0x00}, // v
+      {0x00, 0x00, 0x11, 0x11, 0x15, 0x15, 0x0A, 0x00}, // w
+      {0x00, 0x00, 0x11, 0x0A, 0x04, 0x0A, 0x11, 0x00}, // x
+      {0x00, 0x00, 0x11, 0x11, 0x11, 0x0F, 0x01, 0x0E}, // y
+      {0x00, 0x00, 0x1F, 0x02, 0x04, 0x08, 0x1F, 0x00}, // z
+      {0x02, 0x04, 0x04, 0x08, 0x04, 0x04, 0x02, 0x00}, // {
+      {0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04, 0x00}, // |
+      {0x08, 0x04, 0x04, 0x02, 0x04, 0x04, 0x08, 0x00}, // }
+      {0x00, 0x00, 0x08, 0x15, 0x02, 0x00, 0x00, 0x00}, // ~
+    };
+
+
+    // RGB raster, white to start with. Pixels outside the clip rectangle are ignored.
+    struct Image
+    {
+      Image(const int width, const int height)
+        : width(width)
+        , height(height)
+        , pixels(3 * static_cast<std::size_t>(width) * height, 255)
+      {
+        reset_clip();
+      }
+
+      void
+      set(const int x, const int y, const Color &c)
+      {
+        if (x < clip_x0 || x > clip_x1 || y < clip_y0 || y > clip_y1)
+          return;
+        const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
+        pixels[i]           = c[0];
+        pixels[i + 1]       = c[1];
+        pixels[i + 2]       = c[2];
+      }
+
+      void
+      fill(const int x0, const int y0, const int x1, const int y1, const Color &c)
+      {
+        for (int y = y0; y <= y1; ++y)
+          for (int x = x0; x <= x1; ++x)
+            set(x, y, c);
+      }
+
+      void
+      clip(const int x0, const int y0, const int x1, const int y1)
+      {
+        clip_x0 = std::max(x0, 0);
+        clip_y0 = std::max(y0, 0);
+        clip_x1 = std::min(x1, width - 1);
+        clip_y1 = std::min(y1, height - 1);
+      }
+
+      void
+      reset_clip()
+      {
+        clip(0, 0, width - 1, height - 1);
+      }
+
+      int                        width, height;
+      std::vector<unsigned char> pixels;
+      int                        clip_x0, clip_y0, clip_x1, clip_y1;
+    };
+
+
+    int
+    text_width(const std::string &text)
+    {
+      return text.empty() ? 0 : char_advance * static_cast<int>(text.size()) - 1;
+    }
+
+    // The text, cut short with ".." if it is wider than `room` pixels.
+    std::string
+    fit_text(const std::string &text, const int room)
+    {
+      if (text_width(text) <= room)
+        return text;
+      const int n = std::max(0, (room + 1) / char_advance - 2);
+      return text.substr(0, n) + "..";
+    }
+
+    // Text with its top-left corner at (x, y). Vertical text reads bottom to top, with
+    // (x, y) the bottom-left corner. Bold doubles every column.
+    void
+    draw_text(Image             &image,
+              const std::string &text,
+              const int          x,
+              const int          y,
+              const Color       &c,
+              const bool         bold     = false,
+              const bool         vertical = false)
+    {
+      for (std::size_t i = 0; i < text.size(); ++i)
+        {
+          const unsigned char ch    = text[i];
+          const auto         &glyph = font[(ch >= 32 && ch <= 126 ? ch : '?') - 32];
+          for (int row = 0; row < glyph_rows; ++row)
+            for (int col = 0; col < 5; ++col)
+              if ((glyph[row] >> (4 - col)) & 1)
+                for (int b = 0; b <= (bold ? 1 : 0); ++b)
+                  {
+                    const int along = char_advance * static_cast<int>(i) + col + b;
+                    if (vertical)
+                      image.set(x + row, y - along, c);
+                    else
+                      image.set(x + along, y + row, c);
+                  }
+        }
+    }
+
+    // 2x2 dot: data lines are 2 px wide.
+    void
+    dot(Image &image, const int x, const int y, const Color &c)
+    {
+      image.fill(x, y, x + 1, y + 1, c);
+    }
+
+    // Bresenham line of dots. `dash` (null: solid) counts dots along a series so that
+    // dashes (10 on, 6 off) continue across segments.
+    void
+    draw_line(Image       &image,
+              int          x0,
+              int          y0,
+              const int    x1,
+              const int    y1,
+              const Color &c,
+              int         *dash)
+    {
+      const int dx = std::abs(x1 - x0), sx = x0 < x1 ? 1 : -1;
+      const int dy = -std::abs(y1 - y0), sy = y0 < y1 ? 1 : -1;
+      int       err = dx + dy;
+      while (true)
+        {
+          if (dash == nullptr || (*dash)++ % 16 < 10)
+            dot(image, x0, y0, c);
+          if (x0 == x1 && y0 == y1)
+            break;
+          const int e2 = 2 * err;
+          if (e2 >= dy)
+            {
+              err += dy;
+              x0 += sx;
+            }
+          if (e2 <= dx)
+            {
+              err += dx;
+              y0 += sy;
+            }
+        }
+    }
+
+
+    // Axis range [lo, hi] with ticks at i * step, i = first..last.
+    struct Axis
+    {
+      double    lo, hi, step;
+      long long first, last;
+    };
+
+    // Range of the data [vmin, vmax] (vmin > vmax: no data) with a 5% margin, and 4-6
+    // ticks at a 1, 2 or 5 x 10^k step.
+    Axis
+    make_axis(double vmin, double vmax)
+    {
+      if (!(vmin <= vmax))
+        {
+          vmin = 0.;
+          vmax = 1.;
+        }
+      vmin = std::clamp(vmin, -1e300, 1e300);
+      vmax = std::clamp(vmax, -1e300, 1e300);
+      // A range lost in round-off counts as constant and gets a width of its own: 1, 2
+      // or 5 x 10^k on either side, about 10% of the value.
+      if (vmax - vmin <= 1e-9 * std::max(std::abs(vmin), std::abs(vmax)))
+        {
+          const double mid  = 0.5 * (vmin + vmax);
+          double       half = 1.;
+          if (mid != 0.)
+            {
+              half = std::pow(10., std::floor(std::log10(0.1 * std::abs(mid))));
+              half *= 0.1 * std::abs(mid) >= 5. * half ? 5. :
+                      0.1 * std::abs(mid) >= 2. * half ? 2. :
+                                                         1.;
+            }
+          vmin = mid - half;
+          vmax = mid + half;
+        }
+      Axis         axis;
+      const double margin = 0.05 * (vmax - vmin);
+      axis.lo             = vmin - margin;
+      axis.hi             = vmax + margin;
+
+      // Ticks inside the range can number 7 for one step and 2-3 for the next larger:
+      // then widen the range to the next tick on the nearer side until there are 4.
+      const auto count_ticks = [&axis](const double step) {
+        axis.step  = step;
+        axis.first = static_cast<long long>(std::ceil(axis.lo / step - 1e-9));
+        axis.last  = static_cast<long long>(std::floor(axis.hi / step + 1e-9));
+        return axis.last - axis.first + 1;
+      };
+      double       decade     = std::pow(10., std::floor(std::log10((axis.hi - axis.lo) / 10.)));
+      const double factors[3] = {1., 2., 5.};
+      for (unsigned int k = 0;; ++k)
+        {
+          const long long n = count_ticks(factors[k % 3] * decade);
+          if (n <= 6)
+            {
+              for (long long m = n; m < 4; m = count_ticks(axis.step))
+                {
+                  const double below = static_cast<double>(axis.first - 1) * axis.step;
+                  const double above = static_cast<double>(axis.last + 1) * axis.step;
+                  if (axis.lo - below <= above - axis.hi)
+                    axis.lo = below;
+                  else
+                    axis.hi = above;
+                }
+              break;
+            }
+          if (k % 3 == 2)
+            decade *= 10.;
+        }
+      return axis;
+    }
+
+    // Shortest labels that tell the ticks apart: fixed point ("0.25") for moderate
+    // magnitudes, else scientific without padding ("1.5e4", "-1e-3").
+    std::vector<std::string>
+    tick_labels(const Axis &axis)
+    {
+      std::vector<double> values;
+      for (long long i = axis.first; i <= axis.last; ++i)
+        values.push_back(static_cast<double>(i) * axis.step);
+      const double largest =
+        std::max(std::abs(values.front()), std::abs(values.back()));
+      const bool scientific = largest >= 1e5 || largest < 1e-3;
+
+      std::vector<std::string> labels(values.size());
+      char                     buffer[64];
+      if (!scientific)
+        {
+          const int decimals =
+            std::max(0, -static_cast<int>(std::floor(std::log10(axis.step) + 1e-9)));
+          for (std::size_t i = 0; i < values.size(); ++i)
+            {
+              std::snprintf(buffer, sizeof(buffer), "%.*f", decimals, values[i]);
+              std::string text = buffer;
+              if (text.find('.') != std::string::npos)
+                {
+                  text.erase(text.find_last_not_of('0') + 1);
+                  if (text.back() == '.')
+                    text.pop_back();
+                }
+              labels[i] = text;
+            }
+        }
+      else
+        for (int precision = 0; precision <= 16; ++precision)
+          {
+            bool exact = true;
+            for (std::size_t i = 0; i < values.size(); ++i)
+              {
+                std::snprintf(buffer, sizeof(buffer), "%.*e", precision, values[i]);
+                exact = exact && std::abs(std::strtod(buffer, nullptr) - values[i]) <=
+                                   1e-6 * axis.step;
+                // Compact: no trailing zeros in the mantissa, no padding in the exponent.
+                std::string       text     = buffer;
+                const std::size_t e        = text.find('e');
+                std::string       mantissa = text.substr(0, e);
+                if (mantissa.find('.') != std::string::npos)
+                  {
+                    mantissa.erase(mantissa.find_last_not_of('0') + 1);
+                    if (mantissa.back() == '.')
+                      mantissa.pop_back();
+                  }
+                labels[i] = mantissa + "e" + std::to_string(std::atoi(text.c_str() + e + 1));
+              }
+            if (exact)
+              break;
+          }
+      for (std::size_t i = 0; i < values.size(); ++i)
+        if (axis.first + static_cast<long long>(i) == 0)
+          labels[i] = "0";
+      return labels;
+    }
+
+
+    // Pixel of a data value on an axis running from pixel p0 (at lo) to p1 (at hi).
+    int
+    to_pixel(const double value, const Axis &axis, const int p0, const int p1)
+    {
+      const double p = p0 + (value - axis.lo) / (axis.hi - axis.lo) * (p1 - p0);
+      return static_cast<int>(std::lround(std::clamp(p, -1e6, 1e6)));
+    }
+
+    void
+    draw_panel(Image &image, const PlotPanel &panel, const int top, const int height)
+    {
+      // Data ranges.
+      double x_min = HUGE_VAL, x_max = -HUGE_VAL, y_min = HUGE_VAL, y_max = -HUGE_VAL;
+      for (const PlotSeries &s : panel.series)
+        {
+          if (s.x.size() != s.y.size())
+            throw std::invalid_argument("write_line_plot: series '" + s.label +
+                                        "' has x and y of different lengths");
+          for (std::size_t i = 0; i < s.x.size(); ++i)
+            if (std::isfinite(s.x[i]) && std::isfinite(s.y[i]))
+              {
+                x_min = std::min(x_min, s.x[i]);
+                x_max = std::max(x_max, s.x[i]);
+                y_min = std::min(y_min, s.y[i]);
+                y_max = std::max(y_max, s.y[i]);
+              }
+        }
+      const Axis                     x_axis   = make_axis(x_min, x_max);
+      const Axis                     y_axis   = make_axis(y_min, y_max);
+      const std::vector<std::string> x_labels = tick_labels(x_axis);
+      const std::vector<std::string> y_labels = tick_labels(y_axis);
+
+      // Layout: title row on top, tick labels and x label below, tick labels and the
+      // vertical y label on the left.
+      constexpr int tick = 5;
+      int           y_label_width = 0;
+      for (const std::string &label : y_labels)
+        y_label_width = std::max(y_label_width, text_width(label));
+      const int box_left =
+        6 + (panel.y_label.empty() ? 0 : glyph_rows + 6) + y_label_width + 4 + tick;
+      const int box_right =
+        image.width - 1 - std::max(12, text_width(x_labels.back()) / 2 + 4);
+      const int box_top    = top + 22;
+      const int box_bottom = top + height - 1 - (tick + 4 + glyph_rows + 4) -
+                             (panel.x_label.empty() ? 0 : glyph_rows + 6);
+      if (box_right - box_left < 40 || box_bottom - box_top < 40)
+        throw std::invalid_argument("write_line_plot: plot size too small for its labels");
+      const auto px = [&](const double x) {
+        return to_pixel(x, x_axis, box_left, box_right);
+      };
+      const auto py = [&](const double y) {
+        return to_pixel(y, y_axis, box_bottom, box_top);
+      };
+
+      // Grid, then data clipped to the inside of the box, then the box itself.
+      for (long long i = x_axis.first; i <= x_axis.last; ++i)
+        {
+          const int x = px(static_cast<double>(i) * x_axis.step);
+          image.fill(x, box_top, x, box_bottom, grid_grey);
+        }
+      for (long long i = y_axis.first; i <= y_axis.last; ++i)
+        {
+          const int y = py(static_cast<double>(i) * y_axis.step);
+          image.fill(box_left, y, box_right, y, grid_grey);
+        }
+      image.clip(box_left + 1, box_top + 1, box_right - 1, box_bottom - 1);
+      for (const PlotSeries &s : panel.series)
+        {
+          int  dash = 0, x_prev = 0, y_prev = 0;
+          bool connected = false;
+          for (std::size_t i = 0; i < s.x.size(); ++i)
+            {
+              if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))
+                {
+                  connected = false;
+                  continue;
+                }
+              const int x = px(s.x[i]), y = py(s.y[i]);
+              if (connected)
+                draw_line(image, x_prev, y_prev, x, y, s.color, s.dashed ? &dash : nullptr);
+              else
+                dot(image, x, y, s.color); // visible even if isolated
+              x_prev    = x;
+              y_prev    = y;
+              connected = true;
+            }
+        }
+      image.reset_clip();
+      image.fill(box_left, box_top, box_right, box_top, black);
+      image.fill(box_left, box_bottom, box_right, box_bottom, black);
+      image.fill(box_left, box_top, box_left, box_bottom, black);
+      image.fill(box_right, box_top, box_right, box_bottom, black);
+
+      // Ticks and their labels.
+      for (long long i = x_axis.first; i <= x_axis.last; ++i)
+        {
+          const int          x     = px(static_cast<double>(i) * x_axis.step);
+          const std::string &label = x_labels[i - x_axis.first];
+          image.fill(x, box_bottom + 1, x, box_bottom + tick, black);
+          draw_text(image, label, x - text_width(label) / 2, box_bottom + tick + 4, black);
+        }
+      for (long long i = y_axis.first; i <= y_axis.last; ++i)
+        {
+          const int          y     = py(static_cast<double>(i) * y_axis.step);
+          const std::string &label = y_labels[i - y_axis.first];
+          image.fill(box_left - tick, y, box_left - 1, y, black);
+          draw_text(image, label, box_left - tick - 4 - text_width(label), y - 3, black);
+        }
+
+      // Legend in the top-right corner of the box: a short line and the label per series.
+      int n_entries = 0, legend_text_width = 0;
+      for (const PlotSeries &s : panel.series)
+        if (!s.label.empty())
+          {
+            ++n_entries;
+            legend_text_width = std::max(legend_text_width, text_width(s.label));
+          }
+      if (n_entries > 0)
+        {
+          const int right = box_right - 6, left = right - (8 + 24 + 6 + legend_text_width + 8);
+          const int upper = box_top + 6, lower = upper + 6 + 12 * n_entries;
+          image.fill(left, upper, right, lower, white);
+          image.fill(left, upper, right, upper, black);
+          image.fill(left, lower, right, lower, black);
+          image.fill(left, upper, left, lower, black);
+          image.fill(right, upper, right, lower, black);
+          int row = 0;
+          for (const PlotSeries &s : panel.series)
+            if (!s.label.empty())
+              {
+                const int y    = upper + 9 + 12 * row++;
+                int       dash = 0;
+                draw_line(image, left + 8, y - 1, left + 8 + 24, y - 1, s.color,
+                          s.dashed ? &dash : nullptr);
+                draw_text(image, s.label, left + 8 + 24 + 6, y - 3, black);
+              }
+        }
+
+      // Title (bold) and axis labels, centred on the box and cut to its size.
+      const int         middle  = (box_left + box_right) / 2;
+      const std::string title   = fit_text(panel.title, box_right - box_left - 1);
+      const std::string x_label = fit_text(panel.x_label, box_right - box_left);
+      const std::string y_label = fit_text(panel.y_label, box_bottom - box_top);
+      draw_text(image, title, middle - (text_width(title) + 1) / 2, top + 8, black, true);
+      draw_text(image, x_label, middle - text_width(x_label) / 2,
+                box_bottom + tick + 4 + glyph_rows + 6, black);
+      draw_text(image, y_label, 6, (box_top + box_bottom) / 2 + text_width(y_label) / 2,
+                black, false, true);
+    }
+
+
+    void
+    append_u32(std::string &out, const std::uint32_t value)
+    {
+      for (int shift = 24; shift >= 0; shift -= 8)
+        out.push_back(static_cast<char>((value >> shift) & 0xFF));
+    }
+
+    // Chunk: length, type, data, CRC-32 of type and data.
+    void
+    append_chunk(std::string &png, const char *type, const std::string &data)
+    {
+      append_u32(png, static_cast<std::uint32_t>(data.size()));
+      const std::size_t start = png.size();
+      png.append(type, 4);
+      png += data;
+      append_u32(png, crc32(0,
+                            reinterpret_cast<const Bytef *>(png.data() + start),
+                            static_cast<uInt>(png.size() - start)));
+    }
+
+    std::string
+    encode_png(const Image &image)
+    {
+      // Every row: filter type 0 (none), then RGB bytes.
+      const std::size_t          row_bytes = 3 * static_cast<std::size_t>(image.width);
+      std::vector<unsigned char> raw;
+      raw.reserve((row_bytes + 1) * image.height);
+      for (int y = 0; y < image.height; ++y)
+        {
+          raw.push_back(0);
+          raw.insert(raw.end(),
+                     image.pixels.begin() + y * row_bytes,
+                     image.pixels.begin() + (y + 1) * row_bytes);
+        }
+      uLongf                     compressed_size = compressBound(raw.size());
+      std::vector<unsigned char> compressed(compressed_size);
+      if (compress2(compressed.data(), &compressed_size, raw.data(), raw.size(), 6) != Z_OK)
+        throw std::runtime_error("write_line_plot: zlib compression failed");
+
+      std::string header;
+      append_u32(header, image.width);
+      append_u32(header, image.height);
+      header += std::string("\x08\x02\x00\x00\x00", 5); // 8 bit RGB, no interlace
+      std::string png("\x89PNG\r\n\x1a\n", 8);
+      append_chunk(png, "IHDR", header);
+      append_chunk(png,
+                   "IDAT",
+                   std::string(reinterpret_cast<const char *>(compressed.data()),
+                               compressed_size));
+      append_chunk(png, "IEND", "");
+      return png;
+    }
+  } // namespace
+
+
+  void
+  write_line_plot(const std::string            &file,
+                  const std::vector<PlotPanel> &panels,
+                  const unsigned int            width,
+                  const unsigned int            panel_height)
+  {
+    if (panels.empty())
+      throw std::invalid_argument("write_line_plot: no panels for " + file);
+    if (width < 200 || panel_height < 120 || width > 20000 ||
+        panel_height * panels.size() > 100000)
+      throw std::invalid_argument("write_line_plot: image size out of range for " + file);
+    Image image(width, panel_height * panels.size());
+    for (std::size_t i = 0; i < panels.size(); ++i)
+      draw_panel(image, panels[i], i * panel_height, panel_height);
+    const std::string png = encode_png(image);
+
+    std::ofstream out(file, std::ios::binary);
+    out.write(png.data(), png.size());
+    out.close();
+    if (!out)
+      throw std::runtime_error("cannot write line plot " + file);
+  }
+} // namespace clothsim::io

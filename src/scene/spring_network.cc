@@ -1,0 +1,369 @@
+#include "scene/spring_network.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace clothsim
+{
+  namespace
+  {
+    using VertexDofs = std::array<std::array<types::global_dof_index, 3>, 3>;
+
+    // Dofs of a cell's vertices, [vertex][component] (FE_SimplexP(1)^3: the base
+    // element's dof k sits on vertex k).
+    template <class CellIterator>
+    VertexDofs
+    vertex_dofs(const CellIterator &cell)
+    {
+      const auto                          &fe = cell->get_fe();
+      std::vector<types::global_dof_index> indices(fe.n_dofs_per_cell());
+      cell->get_dof_indices(indices);
+      VertexDofs dofs;
+      for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+        {
+          const auto [component, vertex] = fe.system_to_component_index(i);
+          dofs[vertex][component]        = indices[i];
+        }
+      return dofs;
+    }
+
+    template <class CellIterator>
+    double
+    reference_area(const CellIterator &cell)
+    {
+      return 0.5 * cross_product_3d(cell->vertex(1) - cell->vertex(0),
+                                    cell->vertex(2) - cell->vertex(0))
+                     .norm();
+    }
+
+    // The local number of the cell's vertex that is not on the edge (a, b).
+    template <class CellIterator>
+    unsigned int
+    opposite_vertex(const CellIterator &cell, const unsigned int a, const unsigned int b)
+    {
+      for (unsigned int v = 0; v < 3; ++v)
+        if (cell->vertex_index(v) != a && cell->vertex_index(v) != b)
+          return v;
+      Assert(false, ExcInternalError());
+      return numbers::invalid_unsigned_int;
+    }
+
+    // The local number of the cell's vertex with global index `index`.
+    template <class CellIterator>
+    unsigned int
+    local_vertex(const CellIterator &cell, const unsigned int index)
+    {
+      for (unsigned int v = 0; v < 3; ++v)
+        if (cell->vertex_index(v) == index)
+          return v;
+      Assert(false, ExcInternalError());
+      return numbers::invalid_unsigned_int;
+    }
+  } // namespace
+
+
+  SpringNetwork::SpringNetwork(const DoFHandler<2, 3> &dof_handler,
+                               const Parameters       &parameters)
+    : communicator(dof_handler.get_communicator())
+  {
+    const MassSpringParameters &springs  = parameters.mass_spring;
+    const MaterialParameters   &material = parameters.material;
+    const bool                  derived  = springs.derived_constants;
+
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const VertexDofs dofs = vertex_dofs(cell);
+          const double     area = reference_area(cell);
+          for (const unsigned int f : cell->face_indices())
+            {
+              const unsigned int a = cell->face(f)->vertex_index(0);
+              const unsigned int b = cell->face(f)->vertex_index(1);
+              const unsigned int i = local_vertex(cell, a), j = local_vertex(cell, b);
+              const double       edge_length = (cell->vertex(j) - cell->vertex(i)).norm();
+
+              if (cell->at_boundary(f))
+                {
+                  const double k =
+                    derived
+                      ? physics::structural_spring_stiffness(material.stretch_stiffness,
+                                                             material.poisson_ratio,
+                                                             edge_length,
+                                                             area,
+                                                             0.)
+                      : springs.structural_stiffness;
+                  entries.push_back(make_entry(Kind::structural,
+                                               k,
+                                               dofs[i],
+                                               dofs[j],
+                                               cell->vertex(i),
+                                               cell->vertex(j)));
+                  continue;
+                }
+              const auto neighbor = cell->neighbor(f);
+              if (neighbor->id() < cell->id())
+                continue; // the neighbour's owner makes these springs
+              const double neighbor_area = reference_area(neighbor);
+              const double k_structural =
+                derived ? physics::structural_spring_stiffness(material.stretch_stiffness,
+                                                               material.poisson_ratio,
+                                                               edge_length,
+                                                               area,
+                                                               neighbor_area)
+                        : springs.structural_stiffness;
+              entries.push_back(make_entry(Kind::structural,
+                                           k_structural,
+                                           dofs[i],
+                                           dofs[j],
+                                           cell->vertex(i),
+                                           cell->vertex(j)));
+
+              // The cross spring between the two opposite vertices.
+              const unsigned int p      = opposite_vertex(cell, a, b);
+              const unsigned int q      = opposite_vertex(neighbor, a, b);
+              const double cross_length = (neighbor->vertex(q) - cell->vertex(p)).norm();
+              double       k_cross      = 0.;
+              if (!derived)
+                k_cross = springs.shear_stiffness + springs.bend_stiffness;
+              else if (material.bending)
+                k_cross = physics::bend_spring_stiffness(material.bending_rigidity,
+                                                         edge_length,
+                                                         area,
+                                                         neighbor_area,
+                                                         cross_length,
+                                                         springs.bend_reference_angle);
+              if (k_cross > 0.)
+                entries.push_back(make_entry(Kind::cross,
+                                             k_cross,
+                                             dofs[p],
+                                             vertex_dofs(neighbor)[q],
+                                             cell->vertex(p),
+                                             neighbor->vertex(q)));
+            }
+        }
+  }
+
+
+  SpringNetwork::Entry
+  SpringNetwork::make_entry(const Kind                                    kind,
+                            const double                                  stiffness,
+                            const std::array<types::global_dof_index, 3> &dofs_0,
+                            const std::array<types::global_dof_index, 3> &dofs_1,
+                            const Point<3>                               &x_0,
+                            const Point<3>                               &x_1) const
+  {
+    Entry entry;
+    entry.kind   = kind;
+    entry.spring = {stiffness, (x_1 - x_0).norm()};
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        entry.dofs[d]     = dofs_0[d];
+        entry.dofs[3 + d] = dofs_1[d];
+      }
+    entry.reference = {{x_0, x_1}};
+    return entry;
+  }
+
+
+  std::array<types::global_dof_index, 2>
+  SpringNetwork::global_counts() const
+  {
+    std::array<types::global_dof_index, 2> counts = {{0, 0}};
+    for (const Entry &entry : entries)
+      ++counts[static_cast<unsigned int>(entry.kind)];
+    for (auto &count : counts)
+      count = Utilities::MPI::sum(count, communicator);
+    return counts;
+  }
+
+
+  std::array<std::pair<double, double>, 2>
+  SpringNetwork::stiffness_range() const
+  {
+    std::array<std::pair<double, double>, 2> range;
+    for (auto &r : range)
+      r = {std::numeric_limits<double>::max(), 0.};
+    for (const Entry &entry : entries)
+      {
+        auto &r  = range[static_cast<unsigned int>(entry.kind)];
+        r.first  = std::min(r.first, entry.spring.stiffness);
+        r.second = std::max(r.second, entry.spring.stiffness);
+      }
+    for (auto &r : range)
+      {
+        r.first  = Utilities::MPI::min(r.first, communicator);
+        r.second = Utilities::MPI::max(r.second, communicator);
+        if (r.second == 0.)
+          r.first = 0.;
+      }
+    return range;
+  }
+
+
+  void
+  SpringNetwork::add_sparsity(TrilinosWrappers::SparsityPattern &sparsity,
+                              const AffineConstraints<double>   &constraints) const
+  {
+    std::vector<types::global_dof_index> dofs(6);
+    for (const Entry &entry : entries)
+      if (entry.kind == Kind::cross)
+        {
+          std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
+          constraints.add_entries_local_to_global(dofs, sparsity, false);
+        }
+  }
+
+
+  physics::SpringPositions
+  SpringNetwork::current_positions(const Entry &entry, const VectorType &u) const
+  {
+    physics::SpringPositions x = entry.reference;
+    for (unsigned int k = 0; k < 2; ++k)
+      for (unsigned int d = 0; d < 3; ++d)
+        x[k][d] += u(entry.dofs[3 * k + d]);
+    return x;
+  }
+
+
+  double
+  SpringNetwork::energy(const VectorType &u) const
+  {
+    double value = 0.;
+    for (const Entry &entry : entries)
+      value += physics::spring_energy(entry.spring, current_positions(entry, u));
+    return value;
+  }
+
+
+  double
+  SpringNetwork::add_to_potential(const VectorType                &u,
+                                  const bool                       projected,
+                                  const double                     damping_coefficient,
+                                  const VectorType                *previous,
+                                  const AffineConstraints<double> &constraints,
+                                  VectorType                      *gradient,
+                                  MatrixType                      *hessian) const
+  {
+    const bool damping = damping_coefficient > 0.;
+    Assert(!damping || (previous != nullptr && damping_tangents.size() == entries.size()),
+           ExcInternalError());
+    if (gradient == nullptr && hessian == nullptr && !damping)
+      return energy(u);
+
+    std::vector<types::global_dof_index> dofs(6);
+    Vector<double>                       cell_vector(6);
+    FullMatrix<double>                   cell_matrix(6, 6);
+    physics::SpringVector                g;
+    physics::SpringMatrix                H;
+    double                               value = 0.;
+    for (unsigned int s = 0; s < entries.size(); ++s)
+      {
+        const Entry &entry = entries[s];
+        value +=
+          physics::spring_energy_gradient_hessian(entry.spring,
+                                                  current_positions(entry, u),
+                                                  projected,
+                                                  g,
+                                                  hessian != nullptr ? &H : nullptr);
+        if (damping)
+          {
+            // c/2 sᵀ K_n s, s = u - u_n.
+            const physics::SpringMatrix &K = damping_tangents[s];
+            std::array<double, 6>        step;
+            for (unsigned int i = 0; i < 6; ++i)
+              step[i] = u(entry.dofs[i]) - (*previous)(entry.dofs[i]);
+            for (unsigned int i = 0; i < 6; ++i)
+              {
+                double Ks = 0.;
+                for (unsigned int j = 0; j < 6; ++j)
+                  {
+                    Ks += K[i][j] * step[j];
+                    if (hessian != nullptr)
+                      H[i][j] += damping_coefficient * K[i][j];
+                  }
+                g[i] += damping_coefficient * Ks;
+                value += 0.5 * damping_coefficient * step[i] * Ks;
+              }
+          }
+        std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
+        if (gradient != nullptr)
+          {
+            for (unsigned int i = 0; i < 6; ++i)
+              cell_vector[i] = g[i];
+            constraints.distribute_local_to_global(cell_vector, dofs, *gradient);
+          }
+        if (hessian != nullptr)
+          {
+            for (unsigned int i = 0; i < 6; ++i)
+              for (unsigned int j = 0; j < 6; ++j)
+                cell_matrix(i, j) = H[i][j];
+            constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
+          }
+      }
+    return value;
+  }
+
+
+  void
+  SpringNetwork::prepare_damping(const VectorType &u_n)
+  {
+    damping_tangents.resize(entries.size());
+    physics::SpringVector gradient;
+    for (unsigned int s = 0; s < entries.size(); ++s)
+      physics::spring_energy_gradient_hessian(entries[s].spring,
+                                              current_positions(entries[s], u_n),
+                                              /*project=*/true,
+                                              gradient,
+                                              &damping_tangents[s]);
+  }
+
+
+  unsigned int
+  SpringNetwork::add_strain_limit_moves(const VectorType &u,
+                                        const VectorType &inverse_mass,
+                                        const double      limit,
+                                        const bool        limit_compression,
+                                        VectorType       &moves,
+                                        VectorType       &counts) const
+  {
+    unsigned int violations = 0;
+    const double tolerance  = 1e-9 * limit;
+    for (const Entry &entry : entries)
+      {
+        if (entry.kind != Kind::structural)
+          continue;
+        const physics::SpringPositions x = current_positions(entry, u);
+        const double strain = (x[1] - x[0]).norm() / entry.spring.rest_length - 1.;
+        if (strain <= limit + tolerance &&
+            (!limit_compression || strain >= -limit - tolerance))
+          continue;
+        // An end pinned in any component does not move.
+        std::array<double, 2> w;
+        for (unsigned int k = 0; k < 2; ++k)
+          w[k] = std::min({inverse_mass(entry.dofs[3 * k]),
+                           inverse_mass(entry.dofs[3 * k + 1]),
+                           inverse_mass(entry.dofs[3 * k + 2])});
+        const physics::SpringPositions corrected = physics::limit_strain(
+          x, entry.spring.rest_length, limit, w[0], w[1], limit_compression);
+        if (corrected == x)
+          continue; // both ends pinned
+        ++violations;
+        std::vector<types::global_dof_index> dofs;
+        std::vector<double>                  values, ones;
+        for (unsigned int k = 0; k < 2; ++k)
+          if (w[k] > 0.)
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                dofs.push_back(entry.dofs[3 * k + d]);
+                values.push_back(corrected[k][d] - x[k][d]);
+                ones.push_back(1.);
+              }
+        moves.add(dofs, values);
+        counts.add(dofs, ones);
+      }
+    return violations;
+  }
+} // namespace clothsim

@@ -1,0 +1,125 @@
+#pragma once
+
+// The mass-spring model's springs on a distributed triangle mesh (Provot 1995), built
+// from the same mesh, dofs and constraints as the finite elements:
+//   structural: one spring on every mesh edge;
+//   cross:      across every interior edge, between the two vertices opposite it (the
+//               shear and bend springs of a triangle mesh: one spring, whose stiffness is
+//               the shear plus the bend constant).
+// Constants derived from the continuum (physics/mass_spring.h):
+//   structural k_e = 8/(9(1-ν²)) E h Σ_T |T| / L_e²                        (exact energy
+//              match on equilateral triangles at ν = 1/3, Van Gelder's weights elsewhere)
+//   cross      k_b from the bending rigidity D, matching the hinge energy at the
+//              reference fold angle θ_r; zero without Material/Bending. No shear part:
+//              a triangle lattice's edges already resist shear, and a further
+//              central-force lattice cannot change its Poisson ratio (1/3).
+// or given directly (uniform, N/m). Each spring belongs to exactly one rank (the owner of
+// the cell with the smaller CellId among the edge's two), so energies and forces are
+// summed once under MPI.
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include "io/parameters.h"
+#include "physics/mass_spring.h"
+
+#include <array>
+#include <vector>
+
+namespace clothsim
+{
+  class SpringNetwork
+  {
+  public:
+    using VectorType = TrilinosWrappers::MPI::Vector;
+    using MatrixType = TrilinosWrappers::SparseMatrix;
+
+    enum class Kind
+    {
+      structural,
+      cross
+    };
+
+    struct Entry
+    {
+      Kind                                   kind;
+      physics::Spring                        spring;
+      std::array<types::global_dof_index, 6> dofs; // end 0 x, y, z, end 1 x, y, z
+      std::array<Point<3>, 2>                reference;
+    };
+
+    // `dof_handler` carries FE_SimplexP(1)^3 (displacements only).
+    SpringNetwork(const DoFHandler<2, 3> &dof_handler, const Parameters &parameters);
+
+    const std::vector<Entry> &
+    springs() const
+    {
+      return entries;
+    }
+
+    // Numbers of springs of each kind over all ranks.
+    std::array<types::global_dof_index, 2>
+    global_counts() const;
+
+    // Smallest and largest stiffness of each kind over all ranks (N/m; 0 if none).
+    std::array<std::pair<double, double>, 2>
+    stiffness_range() const;
+
+    // Couplings of the cross springs' ends (they share no cell).
+    void
+    add_sparsity(TrilinosWrappers::SparsityPattern &sparsity,
+                 const AffineConstraints<double>   &constraints) const;
+
+    // The springs' energy on this rank at displacement u (ghosted), J.
+    double
+    energy(const VectorType &u) const;
+
+    // Adds this rank's springs to a step's potential: energy (returned), gradient and
+    // Hessian (each may be null; distributed through `constraints`, not compressed).
+    // `projected`: each spring's Hessian drops its negative transverse part. Damping:
+    // c/2 sᵀ K_n s with s = u - u_n, K_n from prepare_damping (skipped if c = 0).
+    double
+    add_to_potential(const VectorType                &u,
+                     const bool                       projected,
+                     const double                     damping_coefficient,
+                     const VectorType                *previous,
+                     const AffineConstraints<double> &constraints,
+                     VectorType                      *gradient,
+                     MatrixType                      *hessian) const;
+
+    // The springs' projected Hessians at u_n, for stiffness-proportional damping.
+    void
+    prepare_damping(const VectorType &u_n);
+
+    // One Jacobi sweep of Provot's strain limit over the structural springs: adds each
+    // violating spring's end moves to `moves` and 1 per moved end to `counts` (owned
+    // vectors, to be compressed with add). `inverse_mass` (ghosted): 0 on pinned dofs.
+    // Returns the number of violating springs on this rank.
+    unsigned int
+    add_strain_limit_moves(const VectorType &u,
+                           const VectorType &inverse_mass,
+                           const double      limit,
+                           const bool        limit_compression,
+                           VectorType       &moves,
+                           VectorType       &counts) const;
+
+  private:
+    SpringNetwork::Entry
+    make_entry(const Kind                                    kind,
+               const double                                  stiffness,
+               const std::array<types::global_dof_index, 3> &dofs_0,
+               const std::array<types::global_dof_index, 3> &dofs_1,
+               const Point<3>                               &x_0,
+               const Point<3>                               &x_1) const;
+
+    physics::SpringPositions
+    current_positions(const Entry &entry, const VectorType &u) const;
+
+    MPI_Comm                           communicator;
+    std::vector<Entry>                 entries;
+    std::vector<physics::SpringMatrix> damping_tangents; // per entry, if β > 0
+  };
+} // namespace clothsim

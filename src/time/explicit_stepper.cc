@@ -1,0 +1,297 @@
+#include "time/explicit_stepper.h"
+
+#include "io/progress.h"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace clothsim
+{
+  namespace
+  {
+    // Lumped masses inverted, zero on constrained (pinned) dofs. Owned.
+    void
+    free_inverse_masses(const ClothModel &model, VectorType &inverse_mass)
+    {
+      model.lumped_masses(inverse_mass);
+      const AffineConstraints<double> &constraints = model.get_constraints();
+      for (const types::global_dof_index i : model.owned_dofs())
+        {
+          const double m  = inverse_mass[i];
+          inverse_mass[i] = (m > 0. && !constraints.is_constrained(i)) ? 1. / m : 0.;
+        }
+      inverse_mass.compress(VectorOperation::insert);
+    }
+  } // namespace
+
+
+  CriticalStep
+  estimate_critical_step(const ClothModel &model,
+                         const Parameters &parameters,
+                         const VectorType &u)
+  {
+    VectorType inverse_mass;
+    free_inverse_masses(model, inverse_mass);
+
+    // K: the elastic part of the projected tangent (no inertia, no damping).
+    MatrixType stiffness;
+    model.initialize_matrix(stiffness);
+    StepTerms terms;
+    terms.projected_tangent = true;
+    model.assemble(u, terms, nullptr, &stiffness);
+
+    // Gershgorin: λ_max(M⁻¹K) ≤ max_i Σ_j |K_ij| / m_i over the free rows.
+    double row_bound = 0.;
+    for (const types::global_dof_index i : model.owned_dofs())
+      if (inverse_mass[i] > 0.)
+        {
+          double row_sum = 0.;
+          for (auto entry = stiffness.begin(i); entry != stiffness.end(i); ++entry)
+            row_sum += std::abs(entry->value());
+          row_bound = std::max(row_bound, row_sum * inverse_mass[i]);
+        }
+    row_bound = Utilities::MPI::max(row_bound, model.get_communicator());
+
+    // Power iteration z <- M⁻¹ K z from a start vector that depends on the global dof
+    // index only (the same under any number of ranks); Rayleigh quotient zᵀKz / zᵀMz.
+    VectorType z, Kz;
+    model.initialize_owned(z);
+    model.initialize_owned(Kz);
+    for (const types::global_dof_index i : model.owned_dofs())
+      z[i] = inverse_mass[i] > 0. ? 1. + 0.5 * std::sin(1.618 * double(i)) : 0.;
+    z.compress(VectorOperation::insert);
+    double lambda = 0.;
+    for (unsigned int iteration = 0; iteration < 500; ++iteration)
+      {
+        stiffness.vmult(Kz, z);
+        double zKz = 0., zMz = 0.;
+        for (const types::global_dof_index i : model.owned_dofs())
+          if (inverse_mass[i] > 0.)
+            {
+              zKz += z[i] * Kz[i];
+              zMz += z[i] * z[i] / inverse_mass[i];
+            }
+        zKz                     = Utilities::MPI::sum(zKz, model.get_communicator());
+        zMz                     = Utilities::MPI::sum(zMz, model.get_communicator());
+        const double new_lambda = zMz > 0. ? zKz / zMz : 0.;
+        const bool   converged  = std::abs(new_lambda - lambda) <= 1e-5 * new_lambda;
+        lambda                  = new_lambda;
+        if (converged && iteration > 10)
+          break;
+        for (const types::global_dof_index i : model.owned_dofs())
+          z[i] = inverse_mass[i] * Kz[i];
+        z.compress(VectorOperation::insert);
+        const double norm = z.l2_norm();
+        if (norm == 0.)
+          break;
+        z /= norm;
+      }
+
+    const auto critical = [&](const double omega) {
+      const double zeta = parameters.damping.mass_proportional / (2. * omega) +
+                          parameters.damping.stiffness_proportional * omega / 2.;
+      return std::make_pair((2. / omega) * (std::sqrt(1. + zeta * zeta) - zeta), zeta);
+    };
+    CriticalStep result;
+    result.omega_max                                = std::sqrt(lambda);
+    std::tie(result.estimate, result.damping_ratio) = critical(result.omega_max);
+    result.gershgorin_bound = critical(std::sqrt(row_bound)).first;
+    return result;
+  }
+
+
+  ExplicitStepper::ExplicitStepper(const Parameters   &parameters,
+                                   ClothModel         &model,
+                                   OutputWriter       &output,
+                                   ConditionalOStream &pcout,
+                                   TimerOutput        &timer)
+    : parameters(parameters)
+    , model(model)
+    , output(output)
+    , pcout(pcout)
+    , timer(timer)
+  {
+    free_inverse_masses(model, inverse_mass);
+    model.initialize_owned(gradient);
+    model.initialize_ghosted(u_ghosted);
+    model.initialize_ghosted(previous_ghosted);
+  }
+
+
+  void
+  ExplicitStepper::acceleration(const VectorType &u, const VectorType &v, VectorType &a)
+  {
+    TimerOutput::Scope scope(timer, "assemble forces");
+    // ∇Φ with no inertia and the damping term centred at u - v: its gradient is
+    // ∇W - f_g - f_ext + (α M + β K(u)) v, zero on pinned dofs.
+    StepTerms terms;
+    terms.damping_weight = 1.;
+    u_ghosted            = u;
+    VectorType previous(u);
+    previous -= v;
+    previous_ghosted = previous;
+    terms.previous   = &previous_ghosted;
+    if (parameters.damping.stiffness_proportional > 0.)
+      model.prepare_damping(u_ghosted);
+    model.assemble(u_ghosted, terms, &gradient, nullptr);
+    a = gradient;
+    a.scale(inverse_mass);
+    a *= -1.;
+  }
+
+
+  RunSummary
+  ExplicitStepper::run()
+  {
+    const bool   verlet   = parameters.time.integrator == Integrator::velocity_verlet;
+    const double end      = parameters.time.end_time;
+    const double dt       = parameters.time.time_step;
+    const double interval = parameters.output.interval;
+    const double epsilon  = 1e-9 * dt;
+    const bool   limiting =
+      model.uses_springs() && parameters.mass_spring.strain_limit > 0.;
+
+    VectorType u, v, a, u_old;
+    model.initialize_owned(u);
+    model.initialize_owned(v);
+    model.initialize_owned(a);
+    model.initialize_owned(u_old);
+    VectorType v_ghosted;
+    model.initialize_ghosted(v_ghosted);
+
+    model.apply_pinned_displacement(0., u);
+    u_ghosted = u;
+
+    const CriticalStep critical = estimate_critical_step(model, parameters, u_ghosted);
+    pcout << "  explicit " << (verlet ? "velocity Verlet" : "symplectic Euler")
+          << ": critical step " << critical.estimate << " s (omega_max "
+          << critical.omega_max << " 1/s, damping ratio " << critical.damping_ratio
+          << " there; Gershgorin's safe bound " << critical.gershgorin_bound
+          << " s); time step " << dt << " s = " << dt / critical.estimate << " x critical"
+          << std::endl;
+    if (dt > critical.estimate)
+      pcout << "warning: the time step " << dt
+            << " s exceeds the estimated critical step " << critical.estimate
+            << " s: the explicit run is likely to diverge (it stops when it does)"
+            << std::endl;
+
+    Timer      wall_clock;
+    RunSummary summary;
+    Progress   progress(std::cout,
+                      parameters.output.progress,
+                      Utilities::MPI::this_mpi_process(model.get_communicator()) == 0);
+    {
+      TimerOutput::Scope scope(timer, "output");
+      v_ghosted = v;
+      output.write_state(0, 0., u_ghosted, v_ghosted);
+    }
+    output.write_statistics(
+      {0, 0., 0., 0, 0, 0., 0, model.energies(u_ghosted, v_ghosted), 0.});
+    double next_output = interval > 0. ? interval : end;
+
+    if (verlet)
+      acceleration(u, v, a);
+    double       time = 0.;
+    unsigned int step = 0;
+    while (time < end - epsilon)
+      {
+        // Land on output times and the end exactly.
+        const double time_new = std::min({time + dt, next_output, end});
+        const double h        = time_new - time;
+        u_old                 = u;
+        if (verlet)
+          {
+            v.add(0.5 * h, a); // v_{n+1/2}
+            u.add(h, v);
+          }
+        else
+          {
+            acceleration(u, v, a);
+            v.add(h, a);
+            u.add(h, v);
+          }
+        // Pinned dofs: prescribed positions, velocities by finite difference.
+        model.apply_pinned_displacement(time_new, u);
+        for (const types::global_dof_index i : model.owned_dofs())
+          if (inverse_mass[i] == 0.)
+            v[i] = (u[i] - u_old[i]) / h;
+        v.compress(VectorOperation::insert);
+        if (verlet)
+          {
+            acceleration(u, v, a);
+            v.add(0.5 * h, a);
+            for (const types::global_dof_index i : model.owned_dofs())
+              if (inverse_mass[i] == 0.)
+                v[i] = (u[i] - u_old[i]) / h;
+            v.compress(VectorOperation::insert);
+          }
+        if (limiting)
+          {
+            TimerOutput::Scope scope(timer, "strain limit");
+            const auto         remaining = model.limit_strain(u, v, h);
+            if (remaining > 0)
+              pcout << "step " << step + 1 << ": " << remaining
+                    << " springs still beyond the strain limit after "
+                    << parameters.mass_spring.strain_limit_iterations << " sweeps"
+                    << std::endl;
+            if (verlet)
+              acceleration(u, v, a);
+          }
+        time = time_new;
+        ++step;
+
+        u_ghosted               = u;
+        v_ghosted               = v;
+        const Energies energies = model.energies(u_ghosted, v_ghosted);
+        const bool     output_now =
+          interval == 0. || time >= next_output - epsilon || time >= end - epsilon;
+        // Blow-up: a non-finite energy every step, the triangles' areas every 10 steps
+        // and at output times.
+        std::string failure;
+        if (!std::isfinite(energies.kinetic + energies.elastic))
+          failure = "the energy is not finite";
+        else if (step % 10 == 0 || output_now)
+          {
+            const double smallest = model.min_area_ratio(u_ghosted);
+            const double largest  = model.max_area_ratio(u_ghosted);
+            if (!(smallest > 1e-6))
+              failure =
+                "a triangle collapsed (area ratio " + std::to_string(smallest) + ")";
+            else if (!(largest < 100.))
+              failure = "a triangle grew " + std::to_string(largest) + " times its area";
+          }
+        if (!failure.empty())
+          {
+            progress.finish();
+            std::ostringstream message;
+            message
+              << "the explicit integration diverged at t = " << time << " (step " << step
+              << ", dt = " << dt << " s, estimated critical step " << critical.estimate
+              << " s): " << failure
+              << "; reduce 'Time/Time step' or use 'backward euler'. Output up to the "
+                 "last written frame is kept";
+            throw SimulationError(message.str());
+          }
+
+        output.write_statistics(
+          {step, time, h, 0, 0, 0., 0, energies, wall_clock.wall_time()});
+        if (output_now)
+          {
+            TimerOutput::Scope scope(timer, "output");
+            output.write_state(step, time, u_ghosted, v_ghosted);
+            while (interval > 0. && next_output <= time + epsilon)
+              next_output += interval;
+          }
+        if (step % 16 == 0 || output_now)
+          {
+            std::ostringstream state;
+            state << "step " << step << "  t = " << std::setprecision(4) << time << " s";
+            progress.update(time / end, state.str());
+          }
+      }
+    progress.finish();
+    summary.steps = step;
+    return summary;
+  }
+} // namespace clothsim

@@ -1,0 +1,68 @@
+#pragma once
+
+// Explicit time integration with the lumped mass M (no Newton solve; one force
+// evaluation per step), f(u, v) = -∇W(u) + f_g + f_ext - (α M + β K(u)) v:
+//   symplectic Euler  v_{n+1} = v_n + dt M⁻¹ f(u_n, v_n),  u_{n+1} = u_n + dt v_{n+1}
+//                     (first order; symplectic: no energy drift without damping)
+//   velocity Verlet   v_{n+½} = v_n + dt/2 M⁻¹ f_n,  u_{n+1} = u_n + dt v_{n+½},
+//                     v_{n+1} = v_{n+½} + dt/2 M⁻¹ f(u_{n+1}, v_{n+½})
+//                     (second order, symplectic; the damping force uses v_{n+½})
+// Both are stable for dt below the critical step of the stiffest mode ω_max (λ_max of
+// M⁻¹K) with damping ratio ζ = α/(2ω) + βω/2 there:
+//   dt_crit = (2/ω_max) (√(1 + ζ²) - ζ)
+// (the stability boundary of the mode equation ẍ + 2ζωẋ + ω²x = 0 under symplectic
+// Euler). ω_max comes from power iteration on M⁻¹K at the rest state (a lower bound
+// of λ_max, so dt_crit is slightly optimistic), with Gershgorin's bound
+// λ_max ≤ max_i Σ_j |K_ij| / m_i as the safe side. The run warns when 'Time step' exceeds
+// the estimate, and stops with a SimulationError when the state blows up (a non-finite
+// energy, a triangle grown a hundredfold or collapsed), keeping the output so far. Steps
+// are shortened to land on output times.
+
+#include "time/time_stepper.h"
+
+namespace clothsim
+{
+  struct CriticalStep
+  {
+    double omega_max;        // 1/s, power-iteration estimate of √λ_max(M⁻¹K)
+    double damping_ratio;    // ζ at ω_max
+    double estimate;         // s, dt_crit from omega_max
+    double gershgorin_bound; // s, dt_crit from Gershgorin's λ bound (≤ estimate)
+  };
+
+  // The critical step of the explicit integrators at displacement u (ghosted), with the
+  // projected tangent and the lumped masses (pinned dofs excluded).
+  CriticalStep
+  estimate_critical_step(const ClothModel &model,
+                         const Parameters &parameters,
+                         const VectorType &u);
+
+  class ExplicitStepper
+  {
+  public:
+    ExplicitStepper(const Parameters   &parameters,
+                    ClothModel         &model,
+                    OutputWriter       &output,
+                    ConditionalOStream &pcout,
+                    TimerOutput        &timer);
+
+    // Runs the whole simulation from the reference state at rest.
+    RunSummary
+    run();
+
+  private:
+    // a = M⁻¹ f(u, v) on the free dofs, zero on pinned ones. u, v owned.
+    void
+    acceleration(const VectorType &u, const VectorType &v, VectorType &a);
+
+    const Parameters   &parameters;
+    ClothModel         &model;
+    OutputWriter       &output;
+    ConditionalOStream &pcout;
+    TimerOutput        &timer;
+
+    VectorType inverse_mass; // owned, 0 on pinned dofs
+    VectorType gradient;     // owned
+    VectorType u_ghosted, previous_ghosted;
+  };
+} // namespace clothsim
