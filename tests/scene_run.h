@@ -10,6 +10,7 @@
 
 #include "io/output_writer.h"
 #include "scene/scene.h"
+#include "time/explicit_stepper.h"
 #include "time/time_stepper.h"
 
 #include <cmath>
@@ -90,11 +91,21 @@ namespace clothsim::test
     ClothModel  &model = *run.scene->model;
     TimerOutput  timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
     OutputWriter output(output_directory, model, run.scene->probes, false);
-    TimeStepper  stepper(run.scene->parameters(), model, output, pcout, timer);
-    run.summary      = stepper.run();
-    run.displacement = stepper.displacement();
     model.initialize_ghosted(run.velocity);
-    run.velocity = 0.;
+    if (is_explicit(run.scene->parameters().time.integrator))
+      {
+        ExplicitStepper stepper(run.scene->parameters(), model, output, pcout, timer);
+        run.summary      = stepper.run();
+        run.displacement = stepper.displacement();
+        run.velocity     = stepper.velocity();
+      }
+    else
+      {
+        TimeStepper stepper(run.scene->parameters(), model, output, pcout, timer);
+        run.summary      = stepper.run();
+        run.displacement = stepper.displacement();
+        run.velocity     = stepper.velocity();
+      }
     return run;
   }
 

@@ -26,8 +26,8 @@ namespace clothsim::io
 
     // Font for ASCII 32..126: 8 rows per glyph (row 7 only for descenders), one byte per
     // row, bit 4 the leftmost of 5 columns. Text advances 6 px per character.
-    constexpr int           glyph_rows   = 8;
-    constexpr int           char_advance = 6;
+    constexpr int           glyph_rows           = 8;
+    constexpr int           char_advance         = 6;
     constexpr unsigned char font[95][glyph_rows] = {
       {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00}, // ' '
       {0x04, 0x04, 0x04, 0x04, 0x04, 0x00, 0x04, 0x00}, // !
@@ -292,10 +292,12 @@ namespace clothsim::io
           double       half = 1.;
           if (mid != 0.)
             {
-              half = std::pow(10., std::floor(std::log10(0.1 * std::abs(mid))));
-              half *= 0.1 * std::abs(mid) >= 5. * half ? 5. :
-                      0.1 * std::abs(mid) >= 2. * half ? 2. :
-                                                         1.;
+              const double target = 0.1 * std::abs(mid);
+              half                = std::pow(10., std::floor(std::log10(target)));
+              if (target >= 5. * half)
+                half *= 5.;
+              else if (target >= 2. * half)
+                half *= 2.;
             }
           vmin = mid - half;
           vmax = mid + half;
@@ -313,21 +315,27 @@ namespace clothsim::io
         axis.last  = static_cast<long long>(std::floor(axis.hi / step + 1e-9));
         return axis.last - axis.first + 1;
       };
-      double       decade     = std::pow(10., std::floor(std::log10((axis.hi - axis.lo) / 10.)));
+      double decade = std::pow(10., std::floor(std::log10((axis.hi - axis.lo) / 10.)));
       const double factors[3] = {1., 2., 5.};
       for (unsigned int k = 0;; ++k)
         {
           const long long n = count_ticks(factors[k % 3] * decade);
           if (n <= 6)
             {
-              for (long long m = n; m < 4; m = count_ticks(axis.step))
+              while (axis.last - axis.first < 3)
                 {
                   const double below = static_cast<double>(axis.first - 1) * axis.step;
                   const double above = static_cast<double>(axis.last + 1) * axis.step;
                   if (axis.lo - below <= above - axis.hi)
-                    axis.lo = below;
+                    {
+                      axis.lo = std::min(axis.lo, below);
+                      --axis.first;
+                    }
                   else
-                    axis.hi = above;
+                    {
+                      axis.hi = std::max(axis.hi, above);
+                      ++axis.last;
+                    }
                 }
               break;
             }
@@ -345,9 +353,8 @@ namespace clothsim::io
       std::vector<double> values;
       for (long long i = axis.first; i <= axis.last; ++i)
         values.push_back(static_cast<double>(i) * axis.step);
-      const double largest =
-        std::max(std::abs(values.front()), std::abs(values.back()));
-      const bool scientific = largest >= 1e5 || largest < 1e-3;
+      const double largest = std::max(std::abs(values.front()), std::abs(values.back()));
+      const bool   scientific = largest >= 1e5 || largest < 1e-3;
 
       std::vector<std::string> labels(values.size());
       char                     buffer[64];
@@ -376,7 +383,7 @@ namespace clothsim::io
               {
                 std::snprintf(buffer, sizeof(buffer), "%.*e", precision, values[i]);
                 exact = exact && std::abs(std::strtod(buffer, nullptr) - values[i]) <=
-                                   1e-6 * axis.step;
+                                   1e-3 * axis.step;
                 // Compact: no trailing zeros in the mantissa, no padding in the exponent.
                 std::string       text     = buffer;
                 const std::size_t e        = text.find('e');
@@ -387,7 +394,8 @@ namespace clothsim::io
                     if (mantissa.back() == '.')
                       mantissa.pop_back();
                   }
-                labels[i] = mantissa + "e" + std::to_string(std::atoi(text.c_str() + e + 1));
+                labels[i] =
+                  mantissa + "e" + std::to_string(std::atoi(text.c_str() + e + 1));
               }
             if (exact)
               break;
@@ -433,7 +441,7 @@ namespace clothsim::io
 
       // Layout: title row on top, tick labels and x label below, tick labels and the
       // vertical y label on the left.
-      constexpr int tick = 5;
+      constexpr int tick          = 5;
       int           y_label_width = 0;
       for (const std::string &label : y_labels)
         y_label_width = std::max(y_label_width, text_width(label));
@@ -445,7 +453,8 @@ namespace clothsim::io
       const int box_bottom = top + height - 1 - (tick + 4 + glyph_rows + 4) -
                              (panel.x_label.empty() ? 0 : glyph_rows + 6);
       if (box_right - box_left < 40 || box_bottom - box_top < 40)
-        throw std::invalid_argument("write_line_plot: plot size too small for its labels");
+        throw std::invalid_argument(
+          "write_line_plot: plot size too small for its labels");
       const auto px = [&](const double x) {
         return to_pixel(x, x_axis, box_left, box_right);
       };
@@ -478,7 +487,8 @@ namespace clothsim::io
                 }
               const int x = px(s.x[i]), y = py(s.y[i]);
               if (connected)
-                draw_line(image, x_prev, y_prev, x, y, s.color, s.dashed ? &dash : nullptr);
+                draw_line(
+                  image, x_prev, y_prev, x, y, s.color, s.dashed ? &dash : nullptr);
               else
                 dot(image, x, y, s.color); // visible even if isolated
               x_prev    = x;
@@ -498,7 +508,8 @@ namespace clothsim::io
           const int          x     = px(static_cast<double>(i) * x_axis.step);
           const std::string &label = x_labels[i - x_axis.first];
           image.fill(x, box_bottom + 1, x, box_bottom + tick, black);
-          draw_text(image, label, x - text_width(label) / 2, box_bottom + tick + 4, black);
+          draw_text(
+            image, label, x - text_width(label) / 2, box_bottom + tick + 4, black);
         }
       for (long long i = y_axis.first; i <= y_axis.last; ++i)
         {
@@ -518,7 +529,8 @@ namespace clothsim::io
           }
       if (n_entries > 0)
         {
-          const int right = box_right - 6, left = right - (8 + 24 + 6 + legend_text_width + 8);
+          const int right = box_right - 6,
+                    left  = right - (8 + 24 + 6 + legend_text_width + 8);
           const int upper = box_top + 6, lower = upper + 6 + 12 * n_entries;
           image.fill(left, upper, right, lower, white);
           image.fill(left, upper, right, upper, black);
@@ -531,7 +543,12 @@ namespace clothsim::io
               {
                 const int y    = upper + 9 + 12 * row++;
                 int       dash = 0;
-                draw_line(image, left + 8, y - 1, left + 8 + 24, y - 1, s.color,
+                draw_line(image,
+                          left + 8,
+                          y - 1,
+                          left + 8 + 24,
+                          y - 1,
+                          s.color,
                           s.dashed ? &dash : nullptr);
                 draw_text(image, s.label, left + 8 + 24 + 6, y - 3, black);
               }
@@ -543,10 +560,18 @@ namespace clothsim::io
       const std::string x_label = fit_text(panel.x_label, box_right - box_left);
       const std::string y_label = fit_text(panel.y_label, box_bottom - box_top);
       draw_text(image, title, middle - (text_width(title) + 1) / 2, top + 8, black, true);
-      draw_text(image, x_label, middle - text_width(x_label) / 2,
-                box_bottom + tick + 4 + glyph_rows + 6, black);
-      draw_text(image, y_label, 6, (box_top + box_bottom) / 2 + text_width(y_label) / 2,
-                black, false, true);
+      draw_text(image,
+                x_label,
+                middle - text_width(x_label) / 2,
+                box_bottom + tick + 4 + glyph_rows + 6,
+                black);
+      draw_text(image,
+                y_label,
+                6,
+                (box_top + box_bottom) / 2 + text_width(y_label) / 2,
+                black,
+                false,
+                true);
     }
 
 
@@ -565,9 +590,10 @@ namespace clothsim::io
       const std::size_t start = png.size();
       png.append(type, 4);
       png += data;
-      append_u32(png, crc32(0,
-                            reinterpret_cast<const Bytef *>(png.data() + start),
-                            static_cast<uInt>(png.size() - start)));
+      append_u32(png,
+                 crc32(0,
+                       reinterpret_cast<const Bytef *>(png.data() + start),
+                       static_cast<uInt>(png.size() - start)));
     }
 
     std::string
@@ -586,7 +612,8 @@ namespace clothsim::io
         }
       uLongf                     compressed_size = compressBound(raw.size());
       std::vector<unsigned char> compressed(compressed_size);
-      if (compress2(compressed.data(), &compressed_size, raw.data(), raw.size(), 6) != Z_OK)
+      if (compress2(compressed.data(), &compressed_size, raw.data(), raw.size(), 6) !=
+          Z_OK)
         throw std::runtime_error("write_line_plot: zlib compression failed");
 
       std::string header;

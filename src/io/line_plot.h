@@ -12,25 +12,25 @@ namespace clothsim::io
 {
   struct PlotSeries
   {
-    std::string                   label; // legend text (ASCII); empty: not in the legend
-    std::vector<double>           x, y;  // same length; non-finite points break the line
-    std::array<unsigned char, 3>  color; // RGB
-    bool                          dashed = false;
+    std::string                  label; // legend text (ASCII); empty: not in the legend
+    std::vector<double>          x, y;  // same length; non-finite points break the line
+    std::array<unsigned char, 3> color; // RGB
+    bool                         dashed = false;
   };
 
   // One axes box.
   struct PlotPanel
   {
-    std::string             title;  // drawn above the box
+    std::string             title; // drawn above the box
     std::string             x_label;
     std::string             y_label; // drawn vertically left of the box
     std::vector<PlotSeries> series;
   };
 
-  // Writes a PNG of the panels stacked vertically, each width x panel_height pixels, every
-  // panel scaled to its own data with a 5% margin. Throws std::invalid_argument for no
-  // panels or a size too small to draw, std::runtime_error naming the file if it cannot
-  // be written.
+  // Writes a PNG of the panels stacked vertically, each width x panel_height pixels,
+  // every panel scaled to its own data with a 5% margin. Throws std::invalid_argument for
+  // no panels or a size too small to draw, std::runtime_error naming the file if it
+  // cannot be written.
   void
   write_line_plot(const std::string            &file,
                   const std::vector<PlotPanel> &panels,

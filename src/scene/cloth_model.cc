@@ -1071,46 +1071,49 @@ namespace clothsim
 
 
   types::global_dof_index
-  ClothModel::limit_strain(VectorType &u, VectorType &v, const double dt) const
+  ClothModel::limit_strain(VectorType  &u,
+                           VectorType  &v,
+                           const double dt,
+                           double      &largest_strain) const
   {
     const MassSpringParameters &limits = parameters.mass_spring;
     Assert(springs != nullptr, ExcInternalError());
     if (limits.strain_limit == 0.)
       return 0;
-    VectorType u_ghosted, moves, counts;
+    VectorType u_ghosted, moves;
     initialize_ghosted(u_ghosted);
     initialize_owned(moves);
-    initialize_owned(counts);
+    // Gauss–Seidel sweeps colour by colour; the last sweep only counts.
     types::global_dof_index violations = 0;
     for (unsigned int sweep = 0; sweep <= limits.strain_limit_iterations; ++sweep)
       {
-        u_ghosted = u;
-        moves     = 0.;
-        counts    = 0.;
-        violations =
-          Utilities::MPI::sum(static_cast<types::global_dof_index>(
-                                springs->add_strain_limit_moves(u_ghosted,
-                                                                inverse_masses,
-                                                                limits.strain_limit,
-                                                                limits.limit_compression,
-                                                                moves,
-                                                                counts)),
-                              communicator);
-        if (violations == 0 || sweep == limits.strain_limit_iterations)
+        const bool count_only = sweep == limits.strain_limit_iterations;
+        violations            = 0;
+        largest_strain        = 0.;
+        for (unsigned int color = 0; color < springs->n_colors(); ++color)
+          {
+            u_ghosted = u;
+            moves     = 0.;
+            violations += Utilities::MPI::sum(
+              static_cast<types::global_dof_index>(
+                springs->add_strain_limit_moves(u_ghosted,
+                                                inverse_masses,
+                                                limits.strain_limit,
+                                                limits.limit_compression,
+                                                color,
+                                                moves,
+                                                largest_strain)),
+              communicator);
+            if (count_only)
+              continue;
+            moves.compress(VectorOperation::add);
+            u.add(1., moves);
+            v.add(1. / dt, moves);
+          }
+        if (violations == 0)
           break;
-        moves.compress(VectorOperation::add);
-        counts.compress(VectorOperation::add);
-        // Each vertex takes the average of its springs' moves (Jacobi).
-        for (const types::global_dof_index i : locally_owned_dofs)
-          if (counts[i] > 0.)
-            {
-              const double move = moves[i] / counts[i];
-              u[i] += move;
-              v[i] += move / dt;
-            }
-        u.compress(VectorOperation::insert);
-        v.compress(VectorOperation::insert);
       }
+    largest_strain = Utilities::MPI::max(largest_strain, communicator);
     return violations;
   }
 

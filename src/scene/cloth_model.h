@@ -214,12 +214,16 @@ namespace clothsim
     void
     lumped_masses(VectorType &masses) const;
 
-    // Provot's strain limit after a dynamic step (mass-spring only): moves the vertices
-    // of structural springs stretched beyond the limit in Jacobi sweeps (at most 'Strain
-    // limit iterations'), and adds move/dt to the velocities. `u`, `v` owned. Returns the
-    // number of springs still beyond the limit (0 when it converged).
+    // Provot's strain limit after a dynamic step (mass-spring only): Gauss–Seidel sweeps
+    // over the structural springs, colour by colour (at most 'Strain limit iterations'),
+    // each shortening the springs stretched beyond the limit, and move/dt added to the
+    // velocities. `u`, `v` owned. Returns the number of springs still beyond the limit (0
+    // when it converged) and, in `largest_strain`, the largest |strain| among them.
     types::global_dof_index
-    limit_strain(VectorType &u, VectorType &v, const double dt) const;
+    limit_strain(VectorType  &u,
+                 VectorType  &v,
+                 const double dt,
+                 double      &largest_strain) const;
 
     // Per locally owned cell (indexed by active_cell_index): Green strain and stress
     // norms.

@@ -4,7 +4,9 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
+#include <map>
 
 namespace clothsim
 {
@@ -144,6 +146,7 @@ namespace clothsim
                                              neighbor->vertex(q)));
             }
         }
+    color_structural_springs();
   }
 
 
@@ -321,19 +324,83 @@ namespace clothsim
   }
 
 
+  void
+  SpringNetwork::color_structural_springs()
+  {
+    // Key of a spring: its end points' reference coordinates, the smaller end first.
+    using Key         = std::array<double, 6>;
+    const auto key_of = [](const Entry &entry) {
+      std::array<Point<3>, 2> ends = entry.reference;
+      if (std::lexicographical_compare(
+            &ends[1][0], &ends[1][0] + 3, &ends[0][0], &ends[0][0] + 3))
+        std::swap(ends[0], ends[1]);
+      return Key{
+        {ends[0][0], ends[0][1], ends[0][2], ends[1][0], ends[1][1], ends[1][2]}};
+    };
+    std::vector<Key> local;
+    for (const Entry &entry : entries)
+      if (entry.kind == Kind::structural)
+        local.push_back(key_of(entry));
+
+    // Greedy colouring on rank 0 in key order; every rank gets the sorted (key, colour)
+    // table.
+    const auto                gathered = Utilities::MPI::gather(communicator, local, 0);
+    std::vector<Key>          keys;
+    std::vector<unsigned int> key_colors;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      {
+        for (const auto &part : gathered)
+          keys.insert(keys.end(), part.begin(), part.end());
+        std::sort(keys.begin(), keys.end());
+        std::map<std::array<double, 3>, std::uint64_t> used; // per vertex, colour bits
+        for (const Key &key : keys)
+          {
+            std::uint64_t &a = used[{{key[0], key[1], key[2]}}];
+            std::uint64_t &b = used[{{key[3], key[4], key[5]}}];
+            unsigned int   c = 0;
+            while (c < 63 && (((a | b) >> c) & 1u))
+              ++c;
+            a |= std::uint64_t(1) << c;
+            b |= std::uint64_t(1) << c;
+            key_colors.push_back(c);
+          }
+      }
+    keys        = Utilities::MPI::broadcast(communicator, keys, 0);
+    key_colors  = Utilities::MPI::broadcast(communicator, key_colors, 0);
+    color_count = key_colors.empty()
+                    ? 0
+                    : *std::max_element(key_colors.begin(), key_colors.end()) + 1;
+    colors.assign(entries.size(), 0);
+    for (unsigned int s = 0; s < entries.size(); ++s)
+      if (entries[s].kind == Kind::structural)
+        {
+          const auto found =
+            std::lower_bound(keys.begin(), keys.end(), key_of(entries[s]));
+          Assert(found != keys.end() && *found == key_of(entries[s]), ExcInternalError());
+          colors[s] = key_colors[found - keys.begin()];
+        }
+  }
+
+
   unsigned int
-  SpringNetwork::add_strain_limit_moves(const VectorType &u,
-                                        const VectorType &inverse_mass,
-                                        const double      limit,
-                                        const bool        limit_compression,
-                                        VectorType       &moves,
-                                        VectorType       &counts) const
+  SpringNetwork::add_strain_limit_moves(const VectorType  &u,
+                                        const VectorType  &inverse_mass,
+                                        const double       limit,
+                                        const bool         limit_compression,
+                                        const unsigned int color,
+                                        VectorType        &moves,
+                                        double            &largest_strain) const
   {
     unsigned int violations = 0;
-    const double tolerance  = 1e-9 * limit;
-    for (const Entry &entry : entries)
+    // Springs within 0.1 % of the limit count as satisfied (the sweeps converge
+    // linearly).
+    const double                         tolerance = 1e-3 * limit;
+    std::vector<types::global_dof_index> dofs;
+    std::vector<double>                  values;
+    for (unsigned int s = 0; s < entries.size(); ++s)
       {
-        if (entry.kind != Kind::structural)
+        const Entry &entry = entries[s];
+        if (entry.kind != Kind::structural || colors[s] != color)
           continue;
         const physics::SpringPositions x = current_positions(entry, u);
         const double strain = (x[1] - x[0]).norm() / entry.spring.rest_length - 1.;
@@ -346,23 +413,22 @@ namespace clothsim
           w[k] = std::min({inverse_mass(entry.dofs[3 * k]),
                            inverse_mass(entry.dofs[3 * k + 1]),
                            inverse_mass(entry.dofs[3 * k + 2])});
+        if (w[0] == 0. && w[1] == 0.)
+          continue;
+        largest_strain = std::max(largest_strain, std::abs(strain));
         const physics::SpringPositions corrected = physics::limit_strain(
           x, entry.spring.rest_length, limit, w[0], w[1], limit_compression);
-        if (corrected == x)
-          continue; // both ends pinned
         ++violations;
-        std::vector<types::global_dof_index> dofs;
-        std::vector<double>                  values, ones;
+        dofs.clear();
+        values.clear();
         for (unsigned int k = 0; k < 2; ++k)
           if (w[k] > 0.)
             for (unsigned int d = 0; d < 3; ++d)
               {
                 dofs.push_back(entry.dofs[3 * k + d]);
                 values.push_back(corrected[k][d] - x[k][d]);
-                ones.push_back(1.);
               }
         moves.add(dofs, values);
-        counts.add(dofs, ones);
       }
     return violations;
   }

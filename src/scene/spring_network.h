@@ -94,17 +94,30 @@ namespace clothsim
     void
     prepare_damping(const VectorType &u_n);
 
-    // One Jacobi sweep of Provot's strain limit over the structural springs: adds each
-    // violating spring's end moves to `moves` and 1 per moved end to `counts` (owned
-    // vectors, to be compressed with add). `inverse_mass` (ghosted): 0 on pinned dofs.
-    // Returns the number of violating springs on this rank.
+    // Number of colours of the structural springs: no two springs of one colour share a
+    // vertex (greedy colouring in the order of the springs' reference positions, the
+    // same for any number of ranks).
     unsigned int
-    add_strain_limit_moves(const VectorType &u,
-                           const VectorType &inverse_mass,
-                           const double      limit,
-                           const bool        limit_compression,
-                           VectorType       &moves,
-                           VectorType       &counts) const;
+    n_colors() const
+    {
+      return color_count;
+    }
+
+    // Provot's strain limit on the structural springs of one colour: adds each violating
+    // spring's end moves to `moves` (owned, to be compressed with add; the springs of a
+    // colour move disjoint vertices, so a sweep over the colours is a Gauss–Seidel
+    // sweep). `inverse_mass` (ghosted): 0 on pinned dofs. A spring within 0.1 % of the
+    // limit (strain below 1.001 limit) counts as satisfied. Returns the number of
+    // violating springs on this rank; `largest_strain` is raised to the largest |strain|
+    // among them.
+    unsigned int
+    add_strain_limit_moves(const VectorType  &u,
+                           const VectorType  &inverse_mass,
+                           const double       limit,
+                           const bool         limit_compression,
+                           const unsigned int color,
+                           VectorType        &moves,
+                           double            &largest_strain) const;
 
   private:
     SpringNetwork::Entry
@@ -118,8 +131,13 @@ namespace clothsim
     physics::SpringPositions
     current_positions(const Entry &entry, const VectorType &u) const;
 
+    void
+    color_structural_springs();
+
     MPI_Comm                           communicator;
     std::vector<Entry>                 entries;
     std::vector<physics::SpringMatrix> damping_tangents; // per entry, if β > 0
+    std::vector<unsigned int>          colors;           // per entry (structural)
+    unsigned int                       color_count = 0;
   };
 } // namespace clothsim

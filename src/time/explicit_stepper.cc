@@ -157,13 +157,12 @@ namespace clothsim
     model.initialize_owned(v);
     model.initialize_owned(a);
     model.initialize_owned(u_old);
-    VectorType v_ghosted;
     model.initialize_ghosted(v_ghosted);
 
     model.apply_pinned_displacement(0., u);
     u_ghosted = u;
 
-    const CriticalStep critical = estimate_critical_step(model, parameters, u_ghosted);
+    critical = estimate_critical_step(model, parameters, u_ghosted);
     pcout << "  explicit " << (verlet ? "velocity Verlet" : "symplectic Euler")
           << ": critical step " << critical.estimate << " s (omega_max "
           << critical.omega_max << " 1/s, damping ratio " << critical.damping_ratio
@@ -229,10 +228,12 @@ namespace clothsim
         if (limiting)
           {
             TimerOutput::Scope scope(timer, "strain limit");
-            const auto         remaining = model.limit_strain(u, v, h);
+            double             largest   = 0.;
+            const auto         remaining = model.limit_strain(u, v, h, largest);
             if (remaining > 0)
               pcout << "step " << step + 1 << ": " << remaining
-                    << " springs still beyond the strain limit after "
+                    << " springs still beyond the strain limit (largest strain "
+                    << largest << ") after "
                     << parameters.mass_spring.strain_limit_iterations << " sweeps"
                     << std::endl;
             if (verlet)

@@ -50,6 +50,25 @@ namespace clothsim
     RunSummary
     run();
 
+    // The displacement and velocity at the end (ghosted).
+    const VectorType &
+    displacement() const
+    {
+      return u_ghosted;
+    }
+    const VectorType &
+    velocity() const
+    {
+      return v_ghosted;
+    }
+
+    // The critical step estimated at the start of run().
+    const CriticalStep &
+    critical_step() const
+    {
+      return critical;
+    }
+
   private:
     // a = M⁻¹ f(u, v) on the free dofs, zero on pinned ones. u, v owned.
     void
@@ -61,8 +80,9 @@ namespace clothsim
     ConditionalOStream &pcout;
     TimerOutput        &timer;
 
-    VectorType inverse_mass; // owned, 0 on pinned dofs
-    VectorType gradient;     // owned
-    VectorType u_ghosted, previous_ghosted;
+    VectorType   inverse_mass; // owned, 0 on pinned dofs
+    VectorType   gradient;     // owned
+    VectorType   u_ghosted, v_ghosted, previous_ghosted;
+    CriticalStep critical{};
   };
 } // namespace clothsim

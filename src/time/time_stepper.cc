@@ -223,10 +223,12 @@ namespace clothsim
                 parameters.mass_spring.strain_limit > 0.)
               {
                 TimerOutput::Scope scope(timer, "strain limit");
-                const auto         remaining = model.limit_strain(u_new, v_n, dt_taken);
+                double             largest = 0.;
+                const auto remaining = model.limit_strain(u_new, v_n, dt_taken, largest);
                 if (remaining > 0)
                   pcout << "step " << step + 1 << ": " << remaining
-                        << " springs still beyond the strain limit after "
+                        << " springs still beyond the strain limit (largest strain "
+                        << largest << ") after "
                         << parameters.mass_spring.strain_limit_iterations << " sweeps"
                         << std::endl;
               }

@@ -56,6 +56,11 @@ namespace clothsim
     {
       return u_ghosted;
     }
+    const VectorType &
+    velocity() const
+    {
+      return v_ghosted;
+    }
 
   private:
     // Solves one step of size dt from state n; returns the Newton result, leaves u_new.
