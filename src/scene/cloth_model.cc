@@ -10,6 +10,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 
 #include "io/input_error.h"
+#include "scene/ghosted_values.h"
 
 #include <deal.II/grid/manifold_lib.h>
 
@@ -57,7 +58,9 @@ namespace clothsim
     resolve_loads(parameter_file, groups);
     if (uses_springs())
       {
-        springs = std::make_unique<SpringNetwork>(dof_handler, parameters);
+        VectorType prototype;
+        initialize_ghosted(prototype);
+        springs = std::make_unique<SpringNetwork>(dof_handler, parameters, prototype);
         VectorType masses;
         lumped_masses(masses);
         for (const PinnedDof &pin : pinned)
@@ -161,6 +164,8 @@ namespace clothsim
         local_dof_vertex_component[i] = {component_index.second, component_index.first};
       }
 
+    VectorType prototype;
+    initialize_ghosted(prototype);
     std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
     elements.clear();
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -174,6 +179,8 @@ namespace clothsim
               if (component < 3)
                 element.dofs[3 * vertex + component] = dof_indices[i];
             }
+          for (unsigned int i = 0; i < 9; ++i)
+            element.local_dofs[i] = local_index(prototype, element.dofs[i]);
           for (unsigned int v = 0; v < 3; ++v)
             element.reference[v] = cell->vertex(v);
           element.rest = physics::membrane_rest_data(element.reference);
@@ -480,12 +487,13 @@ namespace clothsim
 
 
   void
-  ClothModel::gather(const VectorType                             &vector,
-                     const std::array<types::global_dof_index, 9> &dofs,
-                     std::array<double, 9>                        &values) const
+  ClothModel::gather(const VectorType      &ghosted,
+                     const Element         &element,
+                     std::array<double, 9> &values) const
   {
+    const double *local = ghosted_values(ghosted, locally_relevant_dofs.n_elements());
     for (unsigned int i = 0; i < 9; ++i)
-      values[i] = vector(dofs[i]);
+      values[i] = local[element.local_dofs[i]];
   }
 
 
@@ -511,7 +519,7 @@ namespace clothsim
                                 const VectorType      &u,
                                 std::array<double, 9> &u_e) const
   {
-    gather(u, element.dofs, u_e);
+    gather(u, element, u_e);
     physics::TrianglePositions x = element.reference;
     for (unsigned int v = 0; v < 3; ++v)
       for (unsigned int d = 0; d < 3; ++d)
@@ -652,11 +660,11 @@ namespace clothsim
         // Quadratic terms w_i/2 rᵀ M r + w_d α/2 sᵀ M s with r = u - û, s = u - u_n (a
         // term that is off has its centre at u, so r or s vanishes).
         if (use_inertia)
-          gather(*terms.predictor, element.dofs, predictor_e);
+          gather(*terms.predictor, element, predictor_e);
         else
           predictor_e = u_e;
         if (use_damping)
-          gather(*terms.previous, element.dofs, previous_e);
+          gather(*terms.previous, element, previous_e);
         else
           previous_e = u_e;
         const double damping_mass_weight = terms.damping_weight * alpha;
@@ -975,7 +983,7 @@ namespace clothsim
     for (const Element &element : elements)
       {
         const physics::TrianglePositions x = current_positions(element, u, u_e);
-        gather(v, element.dofs, v_e);
+        gather(v, element, v_e);
         if (!springs)
           local.elastic += physics::membrane_energy(material, element.rest, x);
         if (has_bending())

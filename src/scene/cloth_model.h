@@ -271,6 +271,7 @@ namespace clothsim
     struct Element
     {
       std::array<types::global_dof_index, 9> dofs; // (vertex v, component c) at 3v + c
+      std::array<int, 9>                     local_dofs; // in ghosted vectors
       physics::TrianglePositions             reference;
       physics::MembraneRestData              rest;
       // With bending: edge i (opposite vertex i): its angle dof, its slot in `edges`,
@@ -319,10 +320,11 @@ namespace clothsim
                       const VectorType      &u,
                       std::array<double, 9> &u_e) const;
 
+    // The element's 9 displacement values from a ghosted vector.
     void
-    gather(const VectorType                             &vector,
-           const std::array<types::global_dof_index, 9> &dofs,
-           std::array<double, 9>                        &values) const;
+    gather(const VectorType      &ghosted,
+           const Element         &element,
+           std::array<double, 9> &values) const;
 
     MPI_Comm                                        communicator;
     const Parameters                               &parameters;

@@ -1,5 +1,7 @@
 #include "scene/spring_network.h"
 
+#include "scene/ghosted_values.h"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
 
@@ -68,8 +70,10 @@ namespace clothsim
 
 
   SpringNetwork::SpringNetwork(const DoFHandler<2, 3> &dof_handler,
-                               const Parameters       &parameters)
+                               const Parameters       &parameters,
+                               const VectorType       &ghosted_prototype)
     : communicator(dof_handler.get_communicator())
+    , n_relevant_dofs(ghosted_prototype.trilinos_vector().MyLength())
   {
     const MassSpringParameters &springs  = parameters.mass_spring;
     const MaterialParameters   &material = parameters.material;
@@ -102,7 +106,8 @@ namespace clothsim
                                                dofs[i],
                                                dofs[j],
                                                cell->vertex(i),
-                                               cell->vertex(j)));
+                                               cell->vertex(j),
+                                               ghosted_prototype));
                   continue;
                 }
               const auto neighbor = cell->neighbor(f);
@@ -121,7 +126,8 @@ namespace clothsim
                                            dofs[i],
                                            dofs[j],
                                            cell->vertex(i),
-                                           cell->vertex(j)));
+                                           cell->vertex(j),
+                                           ghosted_prototype));
 
               // The cross spring between the two opposite vertices.
               const unsigned int p      = opposite_vertex(cell, a, b);
@@ -143,7 +149,8 @@ namespace clothsim
                                              dofs[p],
                                              vertex_dofs(neighbor)[q],
                                              cell->vertex(p),
-                                             neighbor->vertex(q)));
+                                             neighbor->vertex(q),
+                                             ghosted_prototype));
             }
         }
     color_structural_springs();
@@ -156,7 +163,8 @@ namespace clothsim
                             const std::array<types::global_dof_index, 3> &dofs_0,
                             const std::array<types::global_dof_index, 3> &dofs_1,
                             const Point<3>                               &x_0,
-                            const Point<3>                               &x_1) const
+                            const Point<3>                               &x_1,
+                            const VectorType &ghosted_prototype) const
   {
     Entry entry;
     entry.kind   = kind;
@@ -166,6 +174,8 @@ namespace clothsim
         entry.dofs[d]     = dofs_0[d];
         entry.dofs[3 + d] = dofs_1[d];
       }
+    for (unsigned int i = 0; i < 6; ++i)
+      entry.local_dofs[i] = local_index(ghosted_prototype, entry.dofs[i]);
     entry.reference = {{x_0, x_1}};
     return entry;
   }
@@ -223,10 +233,11 @@ namespace clothsim
   physics::SpringPositions
   SpringNetwork::current_positions(const Entry &entry, const VectorType &u) const
   {
-    physics::SpringPositions x = entry.reference;
+    const double            *local = ghosted_values(u, n_relevant_dofs);
+    physics::SpringPositions x     = entry.reference;
     for (unsigned int k = 0; k < 2; ++k)
       for (unsigned int d = 0; d < 3; ++d)
-        x[k][d] += u(entry.dofs[3 * k + d]);
+        x[k][d] += local[entry.local_dofs[3 * k + d]];
     return x;
   }
 
@@ -256,6 +267,9 @@ namespace clothsim
     if (gradient == nullptr && hessian == nullptr && !damping)
       return energy(u);
 
+    const double *u_local = ghosted_values(u, n_relevant_dofs);
+    const double *previous_local =
+      damping ? ghosted_values(*previous, n_relevant_dofs) : nullptr;
     std::vector<types::global_dof_index> dofs(6);
     Vector<double>                       cell_vector(6);
     FullMatrix<double>                   cell_matrix(6, 6);
@@ -277,7 +291,8 @@ namespace clothsim
             const physics::SpringMatrix &K = damping_tangents[s];
             std::array<double, 6>        step;
             for (unsigned int i = 0; i < 6; ++i)
-              step[i] = u(entry.dofs[i]) - (*previous)(entry.dofs[i]);
+              step[i] =
+                u_local[entry.local_dofs[i]] - previous_local[entry.local_dofs[i]];
             for (unsigned int i = 0; i < 6; ++i)
               {
                 double Ks = 0.;
@@ -394,7 +409,8 @@ namespace clothsim
     unsigned int violations = 0;
     // Springs within 0.1 % of the limit count as satisfied (the sweeps converge
     // linearly).
-    const double                         tolerance = 1e-3 * limit;
+    const double  tolerance = 1e-3 * limit;
+    const double *w_local   = ghosted_values(inverse_mass, n_relevant_dofs);
     std::vector<types::global_dof_index> dofs;
     std::vector<double>                  values;
     for (unsigned int s = 0; s < entries.size(); ++s)
@@ -410,9 +426,9 @@ namespace clothsim
         // An end pinned in any component does not move.
         std::array<double, 2> w;
         for (unsigned int k = 0; k < 2; ++k)
-          w[k] = std::min({inverse_mass(entry.dofs[3 * k]),
-                           inverse_mass(entry.dofs[3 * k + 1]),
-                           inverse_mass(entry.dofs[3 * k + 2])});
+          w[k] = std::min({w_local[entry.local_dofs[3 * k]],
+                           w_local[entry.local_dofs[3 * k + 1]],
+                           w_local[entry.local_dofs[3 * k + 2]]});
         if (w[0] == 0. && w[1] == 0.)
           continue;
         largest_strain = std::max(largest_strain, std::abs(strain));

@@ -47,12 +47,17 @@ namespace clothsim
     {
       Kind                                   kind;
       physics::Spring                        spring;
-      std::array<types::global_dof_index, 6> dofs; // end 0 x, y, z, end 1 x, y, z
+      std::array<types::global_dof_index, 6> dofs;       // end 0 x, y, z, end 1 x, y, z
+      std::array<int, 6>                     local_dofs; // in ghosted vectors
       std::array<Point<3>, 2>                reference;
     };
 
-    // `dof_handler` carries FE_SimplexP(1)^3 (displacements only).
-    SpringNetwork(const DoFHandler<2, 3> &dof_handler, const Parameters &parameters);
+    // `dof_handler` carries FE_SimplexP(1)^3 (displacements only); `ghosted_prototype`
+    // is a ghosted vector of the model's layout (for local indices,
+    // scene/ghosted_values.h).
+    SpringNetwork(const DoFHandler<2, 3> &dof_handler,
+                  const Parameters       &parameters,
+                  const VectorType       &ghosted_prototype);
 
     const std::vector<Entry> &
     springs() const
@@ -126,7 +131,8 @@ namespace clothsim
                const std::array<types::global_dof_index, 3> &dofs_0,
                const std::array<types::global_dof_index, 3> &dofs_1,
                const Point<3>                               &x_0,
-               const Point<3>                               &x_1) const;
+               const Point<3>                               &x_1,
+               const VectorType                             &ghosted_prototype) const;
 
     physics::SpringPositions
     current_positions(const Entry &entry, const VectorType &u) const;
@@ -135,6 +141,7 @@ namespace clothsim
     color_structural_springs();
 
     MPI_Comm                           communicator;
+    unsigned int                       n_relevant_dofs;
     std::vector<Entry>                 entries;
     std::vector<physics::SpringMatrix> damping_tangents; // per entry, if β > 0
     std::vector<unsigned int>          colors;           // per entry (structural)

@@ -114,6 +114,7 @@ namespace clothsim
   {
     free_inverse_masses(model, inverse_mass);
     model.initialize_owned(gradient);
+    model.initialize_owned(previous);
     model.initialize_ghosted(u_ghosted);
     model.initialize_ghosted(previous_ghosted);
   }
@@ -128,7 +129,7 @@ namespace clothsim
     StepTerms terms;
     terms.damping_weight = 1.;
     u_ghosted            = u;
-    VectorType previous(u);
+    previous             = u;
     previous -= v;
     previous_ghosted = previous;
     terms.previous   = &previous_ghosted;

@@ -82,6 +82,7 @@ namespace clothsim
 
     VectorType   inverse_mass; // owned, 0 on pinned dofs
     VectorType   gradient;     // owned
+    VectorType   previous;     // owned: u - v, the damping term's centre
     VectorType   u_ghosted, v_ghosted, previous_ghosted;
     CriticalStep critical{};
   };
