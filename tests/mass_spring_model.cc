@@ -262,21 +262,7 @@ namespace
                 {"Model=mass-spring", "Constraints/Pinned displacement=0.001*x*t; 0; 0"},
                 directory,
                 communicator);
-    const ClothModel &model = run.model();
-    VectorType        forces;
-    model.initialize_owned(forces);
-    model.internal_forces(run.displacement, forces);
-    std::set<types::global_dof_index> right_edge;
-    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (unsigned int v = 0; v < 3; ++v)
-          if (std::abs(cell->vertex(v)[0] - length) < 1e-12 &&
-              model.owned_dofs().is_element(cell->vertex_dof_index(v, 0)))
-            right_edge.insert(cell->vertex_dof_index(v, 0));
-    double force = 0.;
-    for (const auto dof : right_edge)
-      force += forces[dof];
-    force                  = Utilities::MPI::sum(force, communicator);
+    const double force     = edge_reaction_x(run.model(), run.displacement, length);
     const double E_eff     = force / (width * strain);
     const double E_lattice = 8. / (9. * (1. - nu * nu)) * k_m;
     pcout << "3. uniaxial stress on the unstructured strip (tests/data/strip.msh, 0.1 % "

@@ -19,6 +19,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -107,6 +108,27 @@ namespace clothsim::test
         run.velocity     = stepper.velocity();
       }
     return run;
+  }
+
+  // The x component of the internal forces summed over the (owned) vertices at
+  // X = x_edge: the reaction the pins there take, N.
+  inline double
+  edge_reaction_x(const ClothModel &model, const VectorType &u, const double x_edge)
+  {
+    VectorType forces;
+    model.initialize_owned(forces);
+    model.internal_forces(u, forces);
+    std::set<types::global_dof_index> edge;
+    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (unsigned int v = 0; v < 3; ++v)
+          if (std::abs(cell->vertex(v)[0] - x_edge) < 1e-12 &&
+              model.owned_dofs().is_element(cell->vertex_dof_index(v, 0)))
+            edge.insert(cell->vertex_dof_index(v, 0));
+    double force = 0.;
+    for (const auto dof : edge)
+      force += forces[dof];
+    return Utilities::MPI::sum(force, model.get_communicator());
   }
 
   // Bending energy per area of the triangles whose three reference vertices satisfy

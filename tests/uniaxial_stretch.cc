@@ -12,9 +12,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
-#include "io/output_writer.h"
-#include "scene/scene.h"
-#include "time/time_stepper.h"
+#include "scene_run.h"
 
 #include <cmath>
 #include <filesystem>
@@ -50,22 +48,8 @@ main(int argc, char **argv)
   const double expected_force       = width * stretch * k * E_xx;
   const double expected_contraction = width * (std::sqrt(1. + 2. * E_yy) - 1.);
 
-  // Reaction: the internal forces' x components summed over the right edge's (owned)
-  // vertices.
-  VectorType forces;
-  model.initialize_owned(forces);
-  model.internal_forces(u, forces);
-  double                            force = 0.;
-  std::set<types::global_dof_index> right_edge;
-  for (const auto &cell : model.get_dof_handler().active_cell_iterators())
-    if (cell->is_locally_owned())
-      for (unsigned int v = 0; v < 3; ++v)
-        if (std::abs(cell->vertex(v)[0] - length) < 1e-12 &&
-            model.owned_dofs().is_element(cell->vertex_dof_index(v, 0)))
-          right_edge.insert(cell->vertex_dof_index(v, 0));
-  for (const auto dof : right_edge)
-    force += forces[dof];
-  force = Utilities::MPI::sum(force, communicator);
+  // Reaction: the internal forces' x components summed over the right edge.
+  const double force = test::edge_reaction_x(model, u, length);
 
   // Contraction of the far corner (2, 0.5): uy.
   const auto   far_corner  = scene->probes.at(0);

@@ -528,6 +528,23 @@ namespace clothsim
   }
 
 
+  template <class CellFunction>
+  void
+  ClothModel::for_each_owned_cell(const VectorType &u, const CellFunction &function) const
+  {
+    std::array<double, 9> u_e;
+    unsigned int          e = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const Element &element = elements[e++];
+          function(cell->active_cell_index(),
+                   element,
+                   current_positions(element, u, u_e));
+        }
+  }
+
+
   void
   ClothModel::prepare_damping(const VectorType &u_n)
   {
@@ -1027,38 +1044,25 @@ namespace clothsim
   }
 
 
-  double
-  ClothModel::min_area_ratio(const VectorType &u) const
+  std::pair<double, double>
+  ClothModel::area_ratio_range(const VectorType &u) const
   {
     std::array<double, 9> u_e;
-    double                smallest = std::numeric_limits<double>::max();
+    double                smallest = std::numeric_limits<double>::max(), largest = 0.;
     for (const Element &element : elements)
       {
         const physics::TrianglePositions x = current_positions(element, u, u_e);
         const double                     ratio =
           physics::membrane_strain_stress(material, element.rest, x).area_ratio;
+        // NaN: smallest -1 and largest infinite, so that both checks catch it.
         smallest = std::min(smallest, std::isfinite(ratio) ? ratio : -1.);
-      }
-    return Utilities::MPI::min(smallest, communicator);
-  }
-
-
-  double
-  ClothModel::max_area_ratio(const VectorType &u) const
-  {
-    std::array<double, 9> u_e;
-    double                largest = 0.;
-    for (const Element &element : elements)
-      {
-        const physics::TrianglePositions x = current_positions(element, u, u_e);
-        const double                     ratio =
-          physics::membrane_strain_stress(material, element.rest, x).area_ratio;
         largest =
           std::max(largest,
                    std::isfinite(ratio) ? ratio
                                         : std::numeric_limits<double>::infinity());
       }
-    return Utilities::MPI::max(largest, communicator);
+    return {Utilities::MPI::min(smallest, communicator),
+            Utilities::MPI::max(largest, communicator)};
   }
 
 
@@ -1162,26 +1166,23 @@ namespace clothsim
   ClothModel::cell_edge_strain(const VectorType &u, Vector<double> &strain) const
   {
     strain.reinit(triangulation.n_active_cells());
-    std::array<double, 9> u_e;
-    unsigned int          e = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const Element                   &element = elements[e++];
-          const physics::TrianglePositions x       = current_positions(element, u, u_e);
-          double                           largest = 0.;
-          for (unsigned int i = 0; i < 3; ++i)
-            {
-              const unsigned int a = (i + 1) % 3, b = (i + 2) % 3;
-              const double       edge_strain =
-                (x[b] - x[a]).norm() /
-                  (element.reference[b] - element.reference[a]).norm() -
-                1.;
-              if (std::abs(edge_strain) > std::abs(largest))
-                largest = edge_strain;
-            }
-          strain[cell->active_cell_index()] = largest;
-        }
+    for_each_owned_cell(u,
+                        [&](const unsigned int                cell,
+                            const Element                    &element,
+                            const physics::TrianglePositions &x) {
+                          double largest = 0.;
+                          for (unsigned int i = 0; i < 3; ++i)
+                            {
+                              const unsigned int a = (i + 1) % 3, b = (i + 2) % 3;
+                              const double       edge_strain =
+                                (x[b] - x[a]).norm() /
+                                  (element.reference[b] - element.reference[a]).norm() -
+                                1.;
+                              if (std::abs(edge_strain) > std::abs(largest))
+                                largest = edge_strain;
+                            }
+                          strain[cell] = largest;
+                        });
   }
 
 
@@ -1192,18 +1193,15 @@ namespace clothsim
   {
     strain.reinit(triangulation.n_active_cells());
     stress.reinit(triangulation.n_active_cells());
-    std::array<double, 9> u_e;
-    unsigned int          e = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const Element                   &element = elements[e++];
-          const physics::TrianglePositions x       = current_positions(element, u, u_e);
-          const auto                       measures =
-            physics::membrane_strain_stress(material, element.rest, x);
-          strain[cell->active_cell_index()] = measures.green_strain_norm;
-          stress[cell->active_cell_index()] = measures.stress_norm;
-        }
+    for_each_owned_cell(u,
+                        [&](const unsigned int                cell,
+                            const Element                    &element,
+                            const physics::TrianglePositions &x) {
+                          const auto measures =
+                            physics::membrane_strain_stress(material, element.rest, x);
+                          strain[cell] = measures.green_strain_norm;
+                          stress[cell] = measures.stress_norm;
+                        });
   }
 
 
@@ -1213,18 +1211,16 @@ namespace clothsim
     curvature.reinit(triangulation.n_active_cells());
     if (!has_bending())
       return;
-    std::array<double, 9> u_e;
-    physics::EdgeAngles   psi;
-    unsigned int          e = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const Element                   &element   = elements[e++];
-          const physics::TrianglePositions x         = current_positions(element, u, u_e);
-          const physics::EdgeDirectors     directors = edge_directors(element, u, psi);
-          curvature[cell->active_cell_index()]       = physics::curvature_change_norm(
-            bending_material, element.bending_rest, x, directors, psi);
-        }
+    physics::EdgeAngles psi;
+    for_each_owned_cell(u,
+                        [&](const unsigned int                cell,
+                            const Element                    &element,
+                            const physics::TrianglePositions &x) {
+                          const physics::EdgeDirectors directors =
+                            edge_directors(element, u, psi);
+                          curvature[cell] = physics::curvature_change_norm(
+                            bending_material, element.bending_rest, x, directors, psi);
+                        });
   }
 
 

@@ -202,13 +202,10 @@ namespace clothsim
     Energies
     energies(const VectorType &u, const VectorType &v) const;
 
-    // Smallest current/reference area ratio over all triangles (collapse detection).
-    double
-    min_area_ratio(const VectorType &u) const;
-
-    // Largest current/reference area ratio over all triangles (blow-up detection).
-    double
-    max_area_ratio(const VectorType &u) const;
+    // Smallest and largest current/reference area ratio over all triangles (collapse and
+    // blow-up detection); a NaN gives (-1, infinity).
+    std::pair<double, double>
+    area_ratio_range(const VectorType &u) const;
 
     // The lumped mass of every dof's vertex (owned vector, kg; zero on angle dofs).
     void
@@ -321,6 +318,12 @@ namespace clothsim
                       std::array<double, 9> &u_e) const;
 
     // The element's 9 displacement values from a ghosted vector.
+    // Calls function(active cell index, element, current positions) for every locally
+    // owned cell.
+    template <class CellFunction>
+    void
+    for_each_owned_cell(const VectorType &u, const CellFunction &function) const;
+
     void
     gather(const VectorType      &ghosted,
            const Element         &element,

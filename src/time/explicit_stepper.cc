@@ -255,8 +255,7 @@ namespace clothsim
           failure = "the energy is not finite";
         else if (step % 10 == 0 || output_now)
           {
-            const double smallest = model.min_area_ratio(u_ghosted);
-            const double largest  = model.max_area_ratio(u_ghosted);
+            const auto [smallest, largest] = model.area_ratio_range(u_ghosted);
             if (!(smallest > 1e-6))
               failure =
                 "a triangle collapsed (area ratio " + std::to_string(smallest) + ")";

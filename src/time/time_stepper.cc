@@ -123,7 +123,7 @@ namespace clothsim
     if (result.converged)
       {
         u_ghosted         = u_new;
-        const double area = model.min_area_ratio(u_ghosted);
+        const double area = model.area_ratio_range(u_ghosted).first;
         if (!(area > 1e-6))
           {
             result.converged = false;
