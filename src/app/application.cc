@@ -121,6 +121,12 @@ namespace clothsim
                 << range[0].first << " to " << range[0].second << " N/m), " << counts[1]
                 << " cross springs (k " << range[1].first << " to " << range[1].second
                 << " N/m)\n";
+          if (parameters.time.integrator == Integrator::static_load_steps)
+            pcout
+              << "  note: springs have no linear bending stiffness at a flat state (a "
+                 "bend spring's energy grows like the fold angle^4): a static solve of a "
+                 "flat sheet under transverse load is singular there; use 'backward "
+                 "euler' with damping\n";
           if (!parameters.constraints.clamped_groups.empty())
             pcout << "  note: springs carry no rotation; the clamped groups hold their "
                      "vertices' positions only\n";

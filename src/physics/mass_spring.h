@@ -64,6 +64,11 @@
 // stiffer beyond; it also adds in-plane stiffness (k_b / k_e ~ (h/L)² / θ_r², small for
 // thin sheets). Valid only for flat rest states.
 //
+// Large strain: a spring's force is linear in its stretch ℓ - L, the St. Venant–Kirchhoff
+// membrane's stress linear in the Green strain ε + ε²/2, so under uniaxial stretch the
+// membrane's force per width grows like ε (1 + 3ε/2 + ...) against the springs' ε: the
+// constants above hold for small strain only (about 15 % apart at 10 % strain).
+//
 // Strain limit (Provot 1995): a spring longer than (1 + τ) L (optionally shorter than
 // (1 - τ) L) is brought back to that length by moving both ends along u, in proportion to
 // their inverse masses w0, w1 (0 = pinned): the mass-weighted centre stays put.
