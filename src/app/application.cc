@@ -185,6 +185,10 @@ namespace clothsim
             return "symplectic euler";
           case Integrator::velocity_verlet:
             return "velocity verlet";
+          case Integrator::bdf2:
+            return "bdf2";
+          case Integrator::implicit_midpoint:
+            return "implicit midpoint";
         }
       return "";
     }

@@ -509,9 +509,16 @@ namespace clothsim
     prm.declare_entry(
       "Integrator",
       "backward euler",
-      Patterns::Selection("backward euler|static|symplectic euler|velocity verlet"),
+      Patterns::Selection(
+        "backward euler|bdf2|implicit midpoint|static|symplectic euler|velocity verlet"),
       "'backward euler': implicit dynamics, each step the minimiser of the "
-      "incremental potential. 'static': equilibrium under loads ramped in "
+      "incremental potential (first order, damps high frequencies). 'bdf2': "
+      "second-order backward differentiation with variable steps (the first "
+      "step backward Euler), the same minimisation with other weights. 'implicit "
+      "midpoint': second order and symplectic (no numerical damping; energy "
+      "oscillates but does not drift): a backward-Euler minimisation over half "
+      "the step to the midpoint, then extrapolation. 'static': equilibrium under "
+      "loads ramped in "
       "'Load steps' equal increments (time = load factor 0..1). 'symplectic "
       "euler' (v first, then x; first order) and 'velocity verlet' (second "
       "order): explicit, one force evaluation per step, stable only below the "
@@ -534,6 +541,18 @@ namespace clothsim
                       Patterns::Integer(1, 100000),
                       "Number of equal load increments in static mode (the first "
                       "increment's size 1/N when 'Adaptive load steps' is on).");
+    prm.declare_entry("Initial displacement",
+                      "0; 0; 0",
+                      Patterns::List(Patterns::Anything(), 3, 3, ";"),
+                      "Displacement at t = 0 in m: three expressions 'ux; uy; uz' in the "
+                      "reference coordinates x, y, z (m), e.g. a mode shape "
+                      "'0; 0; 0.01*sin(pi*x)*sin(pi*y)'. Pinned vertices follow 'Pinned "
+                      "displacement' instead. Dynamic integrators only.");
+    prm.declare_entry("Initial velocity",
+                      "0; 0; 0",
+                      Patterns::List(Patterns::Anything(), 3, 3, ";"),
+                      "Velocity at t = 0 in m/s: 'vx; vy; vz' in x, y, z (m). Dynamic "
+                      "integrators only.");
     prm.declare_entry(
       "Adaptive load steps",
       "false",
@@ -549,15 +568,19 @@ namespace clothsim
   {
     prm.enter_subsection("Time");
     const std::string name = prm.get("Integrator");
-    integrator             = name == "static"             ? Integrator::static_load_steps
-                             : name == "symplectic euler" ? Integrator::symplectic_euler
-                             : name == "velocity verlet"  ? Integrator::velocity_verlet
-                                                          : Integrator::backward_euler;
+    integrator             = name == "static"              ? Integrator::static_load_steps
+                             : name == "bdf2"              ? Integrator::bdf2
+                             : name == "implicit midpoint" ? Integrator::implicit_midpoint
+                             : name == "symplectic euler"  ? Integrator::symplectic_euler
+                             : name == "velocity verlet"   ? Integrator::velocity_verlet
+                                                           : Integrator::backward_euler;
     end_time               = prm.get_double("End time");
     time_step              = prm.get_double("Time step");
     max_step_halvings      = prm.get_integer("Maximum step halvings");
     load_steps             = prm.get_integer("Load steps");
     adaptive_load_steps    = prm.get_bool("Adaptive load steps");
+    initial_displacement   = prm.get("Initial displacement");
+    initial_velocity       = prm.get("Initial velocity");
     prm.leave_subsection();
   }
 

@@ -130,7 +130,9 @@ namespace clothsim
     backward_euler,
     static_load_steps,
     symplectic_euler, // explicit
-    velocity_verlet   // explicit
+    velocity_verlet,  // explicit
+    bdf2,             // implicit, second order, variable step
+    implicit_midpoint // implicit, second order, symplectic
   };
 
   // Explicit integrators take no Newton solve: a step is a force evaluation.
@@ -149,6 +151,9 @@ namespace clothsim
     unsigned int max_step_halvings;
     unsigned int load_steps;          // static mode: initial (or fixed) increments
     bool         adaptive_load_steps; // static mode: grow increments that converge fast
+    // Initial state: FunctionParser expressions 'ux; uy; uz' in x, y, z (m, m/s).
+    std::string initial_displacement;
+    std::string initial_velocity;
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -36,6 +36,8 @@ namespace clothsim
            : std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1), 3))
     , mapping(FE_SimplexP<2, 3>(1))
     , pinned_displacement(3)
+    , initial_displacement_function(3)
+    , initial_velocity_function(3)
   {
     material.stretch_stiffness     = parameters.material.stretch_stiffness;
     material.poisson_ratio         = parameters.material.poisson_ratio;
@@ -418,20 +420,67 @@ namespace clothsim
                        "Constraints/Pinned groups",
                        "the named pinned and clamped groups contain no mesh vertex");
 
+    parse_vector_function(pinned_displacement,
+                          parameters.constraints.pinned_displacement,
+                          /*time_dependent=*/true,
+                          parameter_file,
+                          "Constraints/Pinned displacement");
+    parse_vector_function(initial_displacement_function,
+                          parameters.time.initial_displacement,
+                          /*time_dependent=*/false,
+                          parameter_file,
+                          "Time/Initial displacement");
+    parse_vector_function(initial_velocity_function,
+                          parameters.time.initial_velocity,
+                          /*time_dependent=*/false,
+                          parameter_file,
+                          "Time/Initial velocity");
+  }
+
+
+  void
+  ClothModel::parse_vector_function(FunctionParser<3> &function,
+                                    const std::string &expressions,
+                                    const bool         time_dependent,
+                                    const std::string &parameter_file,
+                                    const std::string &entry)
+  {
     try
       {
-        pinned_displacement.initialize("x,y,z,t",
-                                       parameters.constraints.pinned_displacement,
-                                       {{"pi", numbers::PI}},
-                                       /*time_dependent=*/true);
+        function.initialize(time_dependent ? "x,y,z,t" : "x,y,z",
+                            expressions,
+                            {{"pi", numbers::PI}},
+                            time_dependent);
       }
     catch (const std::exception &)
       {
         throw InputError(parameter_file,
-                         "Constraints/Pinned displacement",
-                         "cannot parse '" + parameters.constraints.pinned_displacement +
-                           "' as three expressions in x, y, z, t");
+                         entry,
+                         "cannot parse '" + expressions +
+                           "' as three expressions in x, y, z" +
+                           (time_dependent ? ", t" : ""));
       }
+  }
+
+
+  void
+  ClothModel::initial_state(VectorType &u, VectorType &v) const
+  {
+    u = 0.;
+    v = 0.;
+    for (const Element &element : elements)
+      for (unsigned int vertex = 0; vertex < 3; ++vertex)
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            const types::global_dof_index dof = element.dofs[3 * vertex + c];
+            if (!locally_owned_dofs.is_element(dof))
+              continue;
+            u[dof] = initial_displacement_function.value(element.reference[vertex], c);
+            v[dof] = initial_velocity_function.value(element.reference[vertex], c);
+          }
+    u.compress(VectorOperation::insert);
+    v.compress(VectorOperation::insert);
+    apply_pinned_displacement(0., u);
   }
 
 

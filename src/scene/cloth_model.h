@@ -169,6 +169,12 @@ namespace clothsim
     void
     initialize_matrix(MatrixType &matrix) const;
 
+    // The state at t = 0 (owned vectors): 'Time/Initial displacement' and 'Initial
+    // velocity' at every vertex (angles zero), pinned dofs at their prescribed position
+    // (velocity as given).
+    void
+    initial_state(VectorType &u, VectorType &v) const;
+
     // Sets the pinned entries of `u` (owned) to the prescribed displacement at time t.
     void
     apply_pinned_displacement(const double time, VectorType &u) const;
@@ -301,6 +307,14 @@ namespace clothsim
     void
     resolve_loads(const std::string &parameter_file, const mesh::MeshGroups &groups);
 
+    // Parses 'fx; fy; fz' into `function`; InputError naming `entry` if it fails.
+    static void
+    parse_vector_function(FunctionParser<3> &function,
+                          const std::string &expressions,
+                          const bool         time_dependent,
+                          const std::string &parameter_file,
+                          const std::string &entry);
+
     // f_extᵀ u over the locally owned dofs (J; zero without point and line forces).
     double
     local_external_work(const VectorType &u) const;
@@ -364,6 +378,8 @@ namespace clothsim
     };
     std::vector<PinnedDof>              pinned;
     mutable FunctionParser<3>           pinned_displacement;
+    FunctionParser<3>                   initial_displacement_function;
+    FunctionParser<3>                   initial_velocity_function;
     std::vector<physics::ElementMatrix> damping_tangents; // per element, if β > 0
     std::unique_ptr<SpringNetwork>      springs;          // Model = mass-spring
     // Inverse lumped masses (ghosted, 0 on pinned dofs), for the strain limit.

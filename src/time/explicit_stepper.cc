@@ -188,7 +188,7 @@ namespace clothsim
     model.initialize_owned(u_old);
     model.initialize_ghosted(v_ghosted);
 
-    model.apply_pinned_displacement(0., u);
+    model.initial_state(u, v);
     u_ghosted = u;
 
     CriticalStepEstimator estimator(model, parameters);

@@ -78,11 +78,15 @@ namespace clothsim
     model.initialize_owned(u_n);
     model.initialize_owned(v_n);
     model.initialize_owned(u_new);
+    model.initialize_owned(v_new);
+    model.initialize_owned(u_nm1);
+    model.initialize_owned(v_nm1);
     model.initialize_owned(last_increment);
     model.initialize_ghosted(u_ghosted);
     model.initialize_ghosted(v_ghosted);
     model.initialize_ghosted(u_n_ghosted);
     model.initialize_ghosted(predictor_ghosted);
+    model.initialize_ghosted(centre_ghosted);
   }
 
 
@@ -91,20 +95,53 @@ namespace clothsim
                           const double dt,
                           const double load_factor)
   {
-    const bool dynamic = parameters.time.integrator == Integrator::backward_euler;
-    StepTerms  terms;
+    const Integrator integrator = parameters.time.integrator;
+    const bool       dynamic    = integrator != Integrator::static_load_steps;
+    const bool       bdf2       = integrator == Integrator::bdf2 && previous_step > 0.;
+    const bool       midpoint   = integrator == Integrator::implicit_midpoint;
+    StepTerms        terms;
     terms.load_factor = load_factor;
+    // BDF2 with step ratio ω = dt/dt_{n-1}, γ = (1+2ω)/(1+ω):
+    //   v_{n+1} = γ/dt (u_{n+1} - ũ),  a_{n+1} = γ/dt (v_{n+1} - ṽ),
+    //   ũ = ((1+ω) u_n - ω²/(1+ω) u_{n-1}) / γ, likewise ṽ;
+    // so the step minimises the incremental potential with w_i = γ²/dt², û = ũ + dt/γ ṽ,
+    // w_d = γ/dt and damping centre ũ. Backward Euler is γ = 1, ũ = u_n, ṽ = v_n; the
+    // implicit midpoint rule is backward Euler over dt/2 to the midpoint x, then
+    // u_{n+1} = 2x - u_n, v_{n+1} = 2(u_{n+1} - u_n)/dt - v_n.
+    double gamma = 1.;
     if (dynamic)
       {
-        terms.inertia_weight = 1. / (dt * dt);
-        terms.damping_weight = 1. / dt;
-        // û = u_n + dt v_n, which is also Newton's initial guess.
-        VectorType predictor(u_n);
-        predictor.add(dt, v_n);
+        const double h = midpoint ? dt / 2. : dt;
+        VectorType   centre(u_n), rate(v_n); // ũ, ṽ
+        if (bdf2)
+          {
+            const double omega = dt / previous_step;
+            gamma              = (1. + 2. * omega) / (1. + omega);
+            const double c_n   = (1. + omega) / gamma;
+            const double c_nm1 = omega * omega / ((1. + omega) * gamma);
+            centre.sadd(c_n, -c_nm1, u_nm1);
+            rate.sadd(c_n, -c_nm1, v_nm1);
+          }
+        terms.inertia_weight = gamma * gamma / (h * h);
+        terms.damping_weight = gamma / h;
+        VectorType predictor(centre);
+        predictor.add(h / gamma, rate);
         predictor_ghosted = predictor;
+        centre_ghosted    = centre;
         terms.predictor   = &predictor_ghosted;
-        terms.previous    = &u_n_ghosted;
-        u_new             = predictor;
+        terms.previous    = &centre_ghosted;
+        u_new             = predictor; // Newton's initial guess
+        model.apply_pinned_displacement(time_new, u_new);
+        if (midpoint)
+          {
+            // The pins' midpoint positions, so that 2x - u_n lands on them at t_{n+1}.
+            u_new.add(1., u_n);
+            u_new *= 0.5;
+            for (const types::global_dof_index i : model.owned_dofs())
+              if (!model.get_constraints().is_constrained(i))
+                u_new[i] = predictor[i];
+            u_new.compress(VectorOperation::insert);
+          }
       }
     else
       {
@@ -114,23 +151,38 @@ namespace clothsim
         u_new = u_n;
         if (last_load_increment > 0.)
           u_new.add(dt / last_load_increment, last_increment);
+        model.apply_pinned_displacement(load_factor, u_new);
       }
-    model.apply_pinned_displacement(dynamic ? time_new : load_factor, u_new);
 
     StepProblem  problem(model, terms, timer);
     NewtonResult result = newton.solve(problem, u_new);
+    if (!result.converged)
+      return result;
 
-    if (result.converged)
+    if (dynamic)
       {
-        u_ghosted         = u_new;
-        const double area = model.area_ratio_range(u_ghosted).first;
-        if (!(area > 1e-6))
+        if (midpoint)
           {
-            result.converged = false;
-            result.failure   = area < 0. ? "NaN in the solution"
-                                         : "a triangle collapsed (area ratio " +
-                                           std::to_string(area) + ")";
+            u_new.sadd(2., -1., u_n);
+            v_new = u_new;
+            v_new -= u_n;
+            v_new.sadd(2. / dt, -1., v_n);
           }
+        else
+          {
+            v_new = u_new;
+            v_new -= centre_ghosted;
+            v_new *= gamma / dt;
+          }
+      }
+    u_ghosted         = u_new;
+    const double area = model.area_ratio_range(u_ghosted).first;
+    if (!(area > 1e-6))
+      {
+        result.converged = false;
+        result.failure =
+          area < 0. ? "NaN in the solution"
+                    : "a triangle collapsed (area ratio " + std::to_string(area) + ")";
       }
     return result;
   }
@@ -139,7 +191,7 @@ namespace clothsim
   RunSummary
   TimeStepper::run()
   {
-    const bool   dynamic = parameters.time.integrator == Integrator::backward_euler;
+    const bool   dynamic = parameters.time.integrator != Integrator::static_load_steps;
     const double end     = dynamic ? parameters.time.end_time : 1.;
     double       nominal_step =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
@@ -157,11 +209,17 @@ namespace clothsim
 
     // Initial state: at rest in the reference configuration, pins at their t = 0
     // position.
-    u_n = 0.;
-    v_n = 0.;
-    model.apply_pinned_displacement(0., u_n);
-    u_ghosted = u_n;
-    v_ghosted = v_n;
+    if (dynamic)
+      model.initial_state(u_n, v_n);
+    else
+      {
+        u_n = 0.;
+        v_n = 0.;
+        model.apply_pinned_displacement(0., u_n);
+      }
+    previous_step = 0.;
+    u_ghosted     = u_n;
+    v_ghosted     = v_n;
     {
       TimerOutput::Scope scope(timer, "output");
       output.write_state(0, 0., u_ghosted, v_ghosted);
@@ -211,14 +269,15 @@ namespace clothsim
                 continue;
               }
 
-            // Accept: v = (u_new - u_n)/dt, shift the state.
+            // Accept: shift the state (BDF2 keeps one more).
+            const double dt_taken = time_new - time;
             if (dynamic)
               {
-                v_n = u_new;
-                v_n -= u_n;
-                v_n /= (time_new - time);
+                u_nm1         = u_n;
+                v_nm1         = v_n;
+                previous_step = dt_taken;
+                v_n           = v_new;
               }
-            const double dt_taken = time_new - time;
             if (dynamic && model.uses_springs() &&
                 parameters.mass_spring.strain_limit > 0.)
               {

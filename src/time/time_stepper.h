@@ -4,6 +4,8 @@
 // cut the step, write output. Backward Euler (Gast & Schroeder 2014's optimisation form):
 //   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} =
 //   (u_{n+1} - u_n)/dt.
+// BDF2 (variable step) and the implicit midpoint rule are the same minimisation with
+// other weights and centres (see solve_step).
 // Static mode: the load factor λ goes 1/N, 2/N, ..., 1 (or adaptive increments); each
 // increment minimises W - λ fᵀ u, starting from the secant predictor along the load path.
 // A step whose Newton solve fails (or whose result holds NaN or a collapsed triangle) is
@@ -76,11 +78,15 @@ namespace clothsim
     MatrixType   tangent;
     NewtonSolver newton;
 
-    VectorType u_n, v_n, u_new; // owned
+    VectorType u_n, v_n, u_new, v_new; // owned
+    // BDF2: the state before u_n and the step that led from it to u_n (0: none yet).
+    VectorType u_nm1, v_nm1; // owned
+    double     previous_step = 0.;
     // Static mode: the last load increment's displacement change and size, for the
     // secant predictor u_n + (Δλ/Δλ_last) Δu_last.
     VectorType last_increment; // owned
     double     last_load_increment = 0.;
     VectorType u_ghosted, v_ghosted, u_n_ghosted, predictor_ghosted; // ghosted
+    VectorType centre_ghosted; // ghosted: the damping term's centre (ũ)
   };
 } // namespace clothsim

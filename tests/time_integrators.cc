@@ -1,0 +1,204 @@
+// The implicit integrators on the pre-stressed square membrane vibrating in its first
+// mode (params/benchmarks/membrane-vibration.prm; f_11 = 2.67929 Hz, period T = 0.373234
+// s):
+// 1. Frequency: the implicit midpoint rule at T/80 over five periods gives f_11 within 1
+// %
+//    (zero crossings of the centre's deflection).
+// 2. Numerical damping over those five periods, per integrator: the midpoint rule keeps
+//    the amplitude (loss below 0.5 %), BDF2 damps less than backward Euler.
+// 3. Temporal convergence: the largest error of the centre's deflection over one period
+//    (0.4 s) with dt = 0.005, 0.0025, 0.00125 s against the midpoint rule at dt =
+//    0.0003125 s; observed orders 1 (backward Euler) and 2 (BDF2, implicit midpoint)
+//    within ±0.15.
+// 4. Energy: the midpoint rule at T/16 over 100 periods keeps the total energy within
+//    0.5 % of the vibration's energy (the largest kinetic energy; the pre-stress energy
+//    is a constant far larger).
+
+#include "csv.h"
+#include "scene_run.h"
+
+using namespace clothsim;
+using namespace clothsim::test;
+
+namespace
+{
+  const std::string benchmark =
+    std::string(CLOTHSIM_SOURCE_DIR) + "/params/benchmarks/membrane-vibration.prm";
+  const std::string directory =
+    std::filesystem::temp_directory_path() / "clothsim-time-integrators";
+  const double frequency = 2.6792856; // Hz
+  const double period    = 1. / frequency;
+
+  // The centre's deflection history (time, uz) from probes.csv.
+  std::vector<std::pair<double, double>>
+  centre_history()
+  {
+    const Csv                              csv = read_csv(directory + "/probes.csv");
+    std::vector<std::pair<double, double>> history;
+    for (unsigned int r = 0; r < csv.rows.size(); ++r)
+      history.emplace_back(csv.number(r, "time"), csv.number(r, "uz"));
+    return history;
+  }
+
+  std::string
+  number(const double value)
+  {
+    std::ostringstream out;
+    out << std::setprecision(15) << value;
+    return out.str();
+  }
+
+  std::vector<std::pair<double, double>>
+  run(const std::string &integrator, const double dt, const double end)
+  {
+    run_scene(benchmark,
+              {"Time/Integrator=" + integrator,
+               "Time/Time step=" + number(dt),
+               "Time/End time=" + number(end)},
+              directory,
+              MPI_COMM_WORLD);
+    return centre_history();
+  }
+
+  // Mean period from the downward zero crossings, and the largest |uz| in the first and
+  // the last period.
+  struct Oscillation
+  {
+    double frequency, first_amplitude, last_amplitude;
+  };
+
+  Oscillation
+  analyse(const std::vector<std::pair<double, double>> &history)
+  {
+    std::vector<double> crossings;
+    for (unsigned int i = 1; i < history.size(); ++i)
+      {
+        const auto [t0, w0] = history[i - 1];
+        const auto [t1, w1] = history[i];
+        if (w0 > 0. && w1 <= 0.)
+          crossings.push_back(t0 + (t1 - t0) * w0 / (w0 - w1));
+      }
+    Oscillation result{0., 0., 0.};
+    if (crossings.size() >= 2)
+      result.frequency = (crossings.size() - 1) / (crossings.back() - crossings.front());
+    const double end = history.back().first;
+    for (const auto &[t, w] : history)
+      {
+        if (t <= period)
+          result.first_amplitude = std::max(result.first_amplitude, std::abs(w));
+        if (t >= end - period)
+          result.last_amplitude = std::max(result.last_amplitude, std::abs(w));
+      }
+    return result;
+  }
+
+  bool
+  check_frequency_and_damping(ConditionalOStream &pcout)
+  {
+    bool                passed = true;
+    std::vector<double> losses;
+    for (const std::string integrator : {"implicit midpoint", "bdf2", "backward euler"})
+      {
+        const Oscillation oscillation =
+          analyse(run(integrator, period / 80., 5. * period));
+        const double loss = 1. - oscillation.last_amplitude / oscillation.first_amplitude;
+        pcout << "  " << integrator << " at T/80: frequency " << oscillation.frequency
+              << " Hz (f_11 " << frequency << ", error "
+              << 100. * (oscillation.frequency / frequency - 1.)
+              << " %), amplitude lost over 4 periods " << 100. * loss << " %"
+              << std::endl;
+        losses.push_back(loss);
+        if (integrator == "implicit midpoint")
+          {
+            passed &= check_below(pcout,
+                                  "midpoint: |f / f_11 - 1|",
+                                  std::abs(oscillation.frequency / frequency - 1.),
+                                  0.01);
+            passed &=
+              check_below(pcout, "midpoint: amplitude lost", std::abs(loss), 0.005);
+          }
+      }
+    passed &= check_below(pcout,
+                          "amplitude lost: bdf2 / backward euler",
+                          losses[1] / losses[2],
+                          1.);
+    return passed;
+  }
+
+  // Largest |uz(t) - uz_ref(t)| over the steps of `history`, all of which are steps of
+  // the reference (its step divides theirs).
+  double
+  largest_error(const std::vector<std::pair<double, double>> &history,
+                const std::vector<std::pair<double, double>> &reference)
+  {
+    double       error = 0.;
+    unsigned int r     = 0;
+    for (const auto &[t, w] : history)
+      {
+        while (r + 1 < reference.size() && reference[r].first < t - 1e-9)
+          ++r;
+        error = std::max(error, std::abs(w - reference[r].second));
+      }
+    return error;
+  }
+
+  bool
+  check_orders(ConditionalOStream &pcout)
+  {
+    const double end       = 0.4; // about one period
+    const auto   reference = run("implicit midpoint", 0.0003125, end);
+    bool         passed    = true;
+    for (const auto &[integrator, order] : std::vector<std::pair<std::string, double>>{
+           {"backward euler", 1.}, {"bdf2", 2.}, {"implicit midpoint", 2.}})
+      {
+        std::vector<double> errors;
+        for (const double dt : {0.005, 0.0025, 0.00125})
+          errors.push_back(largest_error(run(integrator, dt, end), reference));
+        pcout << "  " << integrator << ": largest errors " << errors[0] << ", "
+              << errors[1] << ", " << errors[2] << " m; orders "
+              << observed_order(errors[0], errors[1]) << ", "
+              << observed_order(errors[1], errors[2]) << std::endl;
+        const double observed = observed_order(errors[1], errors[2]);
+        passed &=
+          check_above(pcout, integrator + ": observed order", observed, order - 0.15);
+        passed &=
+          check_below(pcout, integrator + ": observed order", observed, order + 0.15);
+      }
+    return passed;
+  }
+
+  bool
+  check_energy(ConditionalOStream &pcout)
+  {
+    run("implicit midpoint", period / 16., 100. * period);
+    const Csv    csv     = read_csv(directory + "/statistics.csv");
+    const double initial = csv.number(0, "total_energy");
+    double       drift = 0., kinetic = 0.;
+    for (unsigned int r = 0; r < csv.rows.size(); ++r)
+      {
+        drift   = std::max(drift, std::abs(csv.number(r, "total_energy") - initial));
+        kinetic = std::max(kinetic, csv.number(r, "kinetic_energy"));
+      }
+    pcout << "  midpoint at T/16 over 100 periods (" << csv.rows.size() - 1
+          << " steps): largest energy drift " << drift << " J, vibration energy "
+          << kinetic << " J" << std::endl;
+    return check_below(pcout, "energy drift / vibration energy", drift / kinetic, 0.005);
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ConditionalOStream               pcout(std::cout,
+                           Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
+  pcout << "1.-2. frequency and numerical damping over five periods" << std::endl;
+  bool passed = check_frequency_and_damping(pcout);
+  pcout << "3. temporal convergence" << std::endl;
+  passed &= check_orders(pcout);
+  pcout << "4. energy of the midpoint rule" << std::endl;
+  passed &= check_energy(pcout);
+  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
+  return passed ? 0 : 1;
+}
