@@ -79,6 +79,7 @@ namespace clothsim
     model.initialize_owned(v_n);
     model.initialize_owned(u_new);
     model.initialize_owned(v_new);
+    model.initialize_owned(centre);
     model.initialize_owned(u_nm1);
     model.initialize_owned(v_nm1);
     model.initialize_owned(last_increment);
@@ -112,7 +113,8 @@ namespace clothsim
     if (dynamic)
       {
         const double h = midpoint ? dt / 2. : dt;
-        VectorType   centre(u_n), rate(v_n); // ũ, ṽ
+        centre = u_n; // ũ
+        VectorType rate(v_n); // ṽ
         if (bdf2)
           {
             const double omega = dt / previous_step;
@@ -171,7 +173,7 @@ namespace clothsim
         else
           {
             v_new = u_new;
-            v_new -= centre_ghosted;
+            v_new -= centre;
             v_new *= gamma / dt;
           }
       }

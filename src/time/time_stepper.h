@@ -79,6 +79,7 @@ namespace clothsim
     NewtonSolver newton;
 
     VectorType u_n, v_n, u_new, v_new; // owned
+    VectorType centre;                 // owned: ũ, the step's damping centre
     // BDF2: the state before u_n and the step that led from it to u_n (0: none yet).
     VectorType u_nm1, v_nm1; // owned
     double     previous_step = 0.;
