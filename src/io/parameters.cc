@@ -589,6 +589,15 @@ namespace clothsim
   NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
+    prm.declare_entry(
+      "Method",
+      "newton",
+      Patterns::Selection("newton|single step"),
+      "'newton': Newton iterations with line search until the tolerances below "
+      "hold. 'single step': one linearised Newton step per time step, taken in "
+      "full and accepted without a convergence test (Baraff & Witkin 1998): "
+      "cheap, but the step's equations are not solved (measure the error against "
+      "'newton'). Static mode needs 'newton'.");
     prm.declare_entry("Maximum iterations",
                       "25",
                       Patterns::Integer(1, 1000),
@@ -640,6 +649,7 @@ namespace clothsim
   NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
+    single_step            = prm.get("Method") == "single step";
     max_iterations         = prm.get_integer("Maximum iterations");
     absolute_tolerance     = prm.get_double("Absolute tolerance");
     relative_tolerance     = prm.get_double("Relative tolerance");
@@ -969,6 +979,12 @@ namespace clothsim
       throw InputError(file,
                        "Material/Mass",
                        "the mass-spring model has lumped masses only; set 'lumped'");
+    if (parameters.nonlinear_solver.single_step &&
+        parameters.time.integrator == Integrator::static_load_steps)
+      throw InputError(file,
+                       "Nonlinear solver/Method",
+                       "static mode needs 'newton' (a single linearised step does not "
+                       "find the equilibrium)");
     if (parameters.mass_spring.strain_limit > 0. &&
         (!mass_spring || parameters.time.integrator == Integrator::static_load_steps))
       throw InputError(file,

@@ -163,6 +163,7 @@ namespace clothsim
 
   struct NonlinearSolverParameters
   {
+    bool         single_step; // one linearised step per time step (Baraff & Witkin)
     unsigned int max_iterations;
     double       absolute_tolerance; // N
     double       relative_tolerance;

@@ -15,8 +15,10 @@
 #include <deal.II/grid/manifold_lib.h>
 
 #include <algorithm>
+#include <iostream>
 #include <limits>
 #include <set>
+#include <sstream>
 
 namespace clothsim
 {
@@ -445,15 +447,24 @@ namespace clothsim
                                     const std::string &parameter_file,
                                     const std::string &entry)
   {
+    // deal.II parses on the first evaluation (and prints the parser's complaint to
+    // std::cerr): evaluate once here, quietly, so that a bad expression is a one-line
+    // input error now rather than an abort mid-run.
+    std::ostringstream parser_messages;
+    std::streambuf    *cerr_buffer = std::cerr.rdbuf(parser_messages.rdbuf());
     try
       {
         function.initialize(time_dependent ? "x,y,z,t" : "x,y,z",
                             expressions,
                             {{"pi", numbers::PI}},
                             time_dependent);
+        for (unsigned int c = 0; c < 3; ++c)
+          function.value(Point<3>(), c);
+        std::cerr.rdbuf(cerr_buffer);
       }
     catch (const std::exception &)
       {
+        std::cerr.rdbuf(cerr_buffer);
         throw InputError(parameter_file,
                          entry,
                          "cannot parse '" + expressions +

@@ -360,7 +360,7 @@ namespace clothsim
         return context.problem.objective(context.u);
       },
       /*max_halvings=*/30));
-    if (parameters.line_search == "full step")
+    if (parameters.line_search == "full step" || parameters.single_step)
       line_search_parameters.set("Method", "Full Step");
     else
       {
@@ -388,9 +388,9 @@ namespace clothsim
     if (parameters.displacement_tolerance > 0.)
       converged->addStatusTest(
         Teuchos::rcp(new SmallFullStep(parameters.displacement_tolerance)));
-    auto max_iterations =
-      Teuchos::rcp(new NOX::StatusTest::MaxIters(parameters.max_iterations));
-    auto finite = Teuchos::rcp(new NOX::StatusTest::FiniteValue);
+    auto max_iterations = Teuchos::rcp(new NOX::StatusTest::MaxIters(
+      parameters.single_step ? 1 : parameters.max_iterations));
+    auto finite         = Teuchos::rcp(new NOX::StatusTest::FiniteValue);
     auto status = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
     status->addStatusTest(finite);
     status->addStatusTest(converged);
@@ -431,6 +431,11 @@ namespace clothsim
     result.residual_norm       = final_group.isF() ? final_group.getNormF() : -1.;
     result.converged =
       outcome == NOX::StatusTest::Converged && std::isfinite(result.residual_norm);
+    // A single linearised step is accepted as it is, unless it failed outright.
+    if (parameters.single_step && context.failure.empty() &&
+        finite->getStatus() != NOX::StatusTest::Failed &&
+        std::isfinite(result.residual_norm))
+      result.converged = true;
     if (!result.converged)
       {
         if (!context.failure.empty())

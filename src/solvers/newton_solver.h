@@ -6,7 +6,8 @@
 // objective (a user merit function), so each step minimises an incremental potential
 // rather than
 // ||F||² (Gast & Schroeder 2014). NOX's "Rescue Bad Newton Solve" is off: a failed linear
-// solve fails the Newton solve, and the caller cuts the step.
+// solve fails the Newton solve, and the caller cuts the step. 'Method = single step'
+// takes one full linearised step and accepts it (Baraff & Witkin 1998).
 
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>

@@ -113,7 +113,7 @@ namespace clothsim
     if (dynamic)
       {
         const double h = midpoint ? dt / 2. : dt;
-        centre = u_n; // ũ
+        centre         = u_n; // ũ
         VectorType rate(v_n); // ṽ
         if (bdf2)
           {
