@@ -221,6 +221,53 @@ namespace
                        differences[1] / differences[0],
                        2.);
   }
+  // 6. Adaptive steps (midpoint rule, one period of the benchmark, first step 0.05 s, far
+  //    too large): the error at the end against the fine fixed-step reference shrinks
+  //    with the tolerance τ and stays within 30 τ (the per-step control lets the errors
+  //    of the ~40 steps add up); the oversized first step is rejected (statistics.csv
+  //    counts it) and the run still finishes.
+  bool
+  check_adaptive(ConditionalOStream &pcout)
+  {
+    const double end       = 0.4;
+    const double reference = run("implicit midpoint", 0.0003125, end).back().second;
+    bool         passed    = true;
+    std::vector<double> errors;
+    for (const double tolerance : {1e-6, 5e-7})
+      {
+        run_scene(benchmark,
+                  {"Time/Integrator=implicit midpoint",
+                   "Time/Adaptive time steps=true",
+                   "Time/Error tolerance=" + number(tolerance),
+                   "Time/Time step=0.05",
+                   "Time/End time=" + number(end)},
+                  directory,
+                  MPI_COMM_WORLD);
+        const double error      = std::abs(centre_history().back().second - reference);
+        const Csv    statistics = read_csv(directory + "/statistics.csv");
+        double       rejected = 0., largest_estimate = 0.;
+        for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+          {
+            rejected += statistics.number(r, "rejected");
+            largest_estimate =
+              std::max(largest_estimate, statistics.number(r, "error_estimate"));
+          }
+        pcout << "  tolerance " << tolerance << " m: " << statistics.rows.size() - 1
+              << " steps, " << rejected << " rejected, largest accepted estimate "
+              << largest_estimate << " m, error at t = " << end << " s: " << error
+              << " m (" << error / tolerance << " tolerances)" << std::endl;
+        passed &= check_above(pcout, "rejected steps", rejected, 0.5);
+        passed &= check_below(pcout,
+                              "largest accepted error estimate / tolerance",
+                              largest_estimate / tolerance,
+                              1. + 1e-9);
+        passed &= check_below(pcout, "end error / tolerance", error / tolerance, 30.);
+        errors.push_back(error);
+      }
+    passed &=
+      check_below(pcout, "error ratio at tolerance / 2", errors[1] / errors[0], 1.);
+    return passed;
+  }
 } // namespace
 
 
@@ -238,6 +285,8 @@ main(int argc, char **argv)
   passed &= check_energy(pcout);
   pcout << "5. the single linearised step" << std::endl;
   passed &= check_single_step(pcout);
+  pcout << "6. adaptive steps" << std::endl;
+  passed &= check_adaptive(pcout);
   pcout << (passed ? "PASSED" : "FAILED") << std::endl;
   return passed ? 0 : 1;
 }

@@ -30,7 +30,7 @@ namespace clothsim
         statistics_csv
           << "step,time,dt,newton_iterations,linear_iterations,residual,retries,"
              "kinetic_energy,elastic_energy,potential_energy,total_energy,"
-             "wall_seconds\n"
+             "wall_seconds,rejected,error_estimate\n"
           << std::flush;
       }
   }
@@ -77,7 +77,8 @@ namespace clothsim
                    << row.linear_iterations << ',' << row.residual << ',' << row.retries
                    << ',' << e.kinetic << ',' << e.elastic << ',' << e.potential << ','
                    << e.kinetic + e.elastic + e.potential << ',' << std::setprecision(4)
-                   << row.wall_seconds << '\n'
+                   << row.wall_seconds << ',' << row.rejected << ','
+                   << std::setprecision(6) << row.error_estimate << '\n'
                    << std::flush;
   }
 

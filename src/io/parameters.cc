@@ -541,6 +541,29 @@ namespace clothsim
                       Patterns::Integer(1, 100000),
                       "Number of equal load increments in static mode (the first "
                       "increment's size 1/N when 'Adaptive load steps' is on).");
+    prm.declare_entry(
+      "Adaptive time steps",
+      "false",
+      Patterns::Bool(),
+      "Implicit dynamics: choose each step from a local error estimate (the "
+      "difference to an explicit predictor of the method's order, scaled by the "
+      "methods' error constants; see time/time_stepper.h). A step whose estimate "
+      "exceeds 'Error tolerance' + 'Relative error tolerance' x max|u| is "
+      "rejected and retried smaller (counted in statistics.csv); accepted steps "
+      "grow by at most 2x. 'Time step' is the first step.");
+    prm.declare_entry("Error tolerance",
+                      "1e-4",
+                      Patterns::Double(0., 1e3),
+                      "Absolute local error tolerance per step in m (adaptive steps).");
+    prm.declare_entry("Relative error tolerance",
+                      "0",
+                      Patterns::Double(0., 1.),
+                      "Local error tolerance relative to the largest displacement "
+                      "(adaptive steps).");
+    prm.declare_entry("Maximum time step",
+                      "0.1",
+                      Patterns::Double(1e-12, 1e6),
+                      "Largest step in s that adaptive stepping may take.");
     prm.declare_entry("Initial displacement",
                       "0; 0; 0",
                       Patterns::List(Patterns::Anything(), 3, 3, ";"),
@@ -567,20 +590,24 @@ namespace clothsim
   TimeParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Time");
-    const std::string name = prm.get("Integrator");
-    integrator             = name == "static"              ? Integrator::static_load_steps
-                             : name == "bdf2"              ? Integrator::bdf2
-                             : name == "implicit midpoint" ? Integrator::implicit_midpoint
-                             : name == "symplectic euler"  ? Integrator::symplectic_euler
-                             : name == "velocity verlet"   ? Integrator::velocity_verlet
-                                                           : Integrator::backward_euler;
-    end_time               = prm.get_double("End time");
-    time_step              = prm.get_double("Time step");
-    max_step_halvings      = prm.get_integer("Maximum step halvings");
-    load_steps             = prm.get_integer("Load steps");
-    adaptive_load_steps    = prm.get_bool("Adaptive load steps");
-    initial_displacement   = prm.get("Initial displacement");
-    initial_velocity       = prm.get("Initial velocity");
+    const std::string name   = prm.get("Integrator");
+    integrator               = name == "static" ? Integrator::static_load_steps
+                               : name == "bdf2" ? Integrator::bdf2
+                               : name == "implicit midpoint" ? Integrator::implicit_midpoint
+                               : name == "symplectic euler" ? Integrator::symplectic_euler
+                               : name == "velocity verlet"  ? Integrator::velocity_verlet
+                                                            : Integrator::backward_euler;
+    end_time                 = prm.get_double("End time");
+    time_step                = prm.get_double("Time step");
+    max_step_halvings        = prm.get_integer("Maximum step halvings");
+    load_steps               = prm.get_integer("Load steps");
+    adaptive_load_steps      = prm.get_bool("Adaptive load steps");
+    adaptive_time_steps      = prm.get_bool("Adaptive time steps");
+    error_tolerance          = prm.get_double("Error tolerance");
+    relative_error_tolerance = prm.get_double("Relative error tolerance");
+    maximum_time_step        = prm.get_double("Maximum time step");
+    initial_displacement     = prm.get("Initial displacement");
+    initial_velocity         = prm.get("Initial velocity");
     prm.leave_subsection();
   }
 
@@ -979,6 +1006,19 @@ namespace clothsim
       throw InputError(file,
                        "Material/Mass",
                        "the mass-spring model has lumped masses only; set 'lumped'");
+    if (parameters.time.adaptive_time_steps &&
+        (parameters.time.integrator == Integrator::static_load_steps ||
+         is_explicit(parameters.time.integrator)))
+      throw InputError(file,
+                       "Time/Adaptive time steps",
+                       "adaptive time steps are for the implicit dynamic integrators "
+                       "(backward euler, bdf2, implicit midpoint)");
+    if (parameters.time.adaptive_time_steps && parameters.time.error_tolerance == 0. &&
+        parameters.time.relative_error_tolerance == 0.)
+      throw InputError(file,
+                       "Time/Error tolerance",
+                       "adaptive time steps need a positive absolute or relative "
+                       "tolerance");
     if (parameters.nonlinear_solver.single_step &&
         parameters.time.integrator == Integrator::static_load_steps)
       throw InputError(file,

@@ -151,6 +151,11 @@ namespace clothsim
     unsigned int max_step_halvings;
     unsigned int load_steps;          // static mode: initial (or fixed) increments
     bool         adaptive_load_steps; // static mode: grow increments that converge fast
+    // Adaptive time steps: local error estimate below tolerance + relative ||u||_inf.
+    bool   adaptive_time_steps;
+    double error_tolerance;          // m
+    double relative_error_tolerance; // of the largest displacement
+    double maximum_time_step;        // s
     // Initial state: FunctionParser expressions 'ux; uy; uz' in x, y, z (m, m/s).
     std::string initial_displacement;
     std::string initial_velocity;

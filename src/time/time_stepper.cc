@@ -2,6 +2,7 @@
 
 #include "io/progress.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -88,6 +89,9 @@ namespace clothsim
     model.initialize_ghosted(u_n_ghosted);
     model.initialize_ghosted(predictor_ghosted);
     model.initialize_ghosted(centre_ghosted);
+    displacement_dofs = model.near_null_space().displacement_dofs;
+    if (displacement_dofs.n_elements() == 0)
+      displacement_dofs = model.owned_dofs();
   }
 
 
@@ -190,6 +194,29 @@ namespace clothsim
   }
 
 
+  std::pair<double, unsigned int>
+  TimeStepper::error_estimate(const double dt) const
+  {
+    const Integrator   integrator = parameters.time.integrator;
+    const unsigned int order =
+      (integrator != Integrator::backward_euler && previous_step > 0.) ? 2 : 1;
+    double kappa    = 0.5;
+    double a_weight = 0.; // dt²/2 / dt₋ on (v - v₋)
+    if (order == 2)
+      {
+        kappa    = integrator == Integrator::implicit_midpoint ? 1. / 6. : 8. / 7.;
+        a_weight = 0.5 * dt * dt / previous_step;
+      }
+    double largest = 0.;
+    for (const types::global_dof_index i : displacement_dofs)
+      {
+        const double predicted = u_n[i] + dt * v_n[i] + a_weight * (v_n[i] - v_nm1[i]);
+        largest                = std::max(largest, std::abs(u_new[i] - predicted));
+      }
+    return {kappa * Utilities::MPI::max(largest, model.get_communicator()), order};
+  }
+
+
   RunSummary
   TimeStepper::run()
   {
@@ -198,6 +225,7 @@ namespace clothsim
     double       nominal_step =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
     const bool   adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;
+    const bool   adaptive            = dynamic && parameters.time.adaptive_time_steps;
     const double largest_increment   = 4. / parameters.time.load_steps;
     const double output_interval     = dynamic ? parameters.output.interval : 0.;
     const unsigned int max_halvings  = parameters.time.max_step_halvings;
@@ -235,8 +263,9 @@ namespace clothsim
     while (time < end - epsilon)
       {
         // One nominal step, in 2^k sub-steps if Newton needs smaller ones.
-        const double target   = std::min(time + nominal_step, end);
-        unsigned int halvings = 0, last_iterations = 0;
+        double       target   = std::min(time + nominal_step, end);
+        unsigned int halvings = 0, last_iterations = 0, rejected = 0;
+        double       next_step = nominal_step;
         while (time < target - epsilon)
           {
             const double dt =
@@ -269,6 +298,43 @@ namespace clothsim
                       << "); retrying with dt = " << nominal_step / std::pow(2., halvings)
                       << std::endl;
                 continue;
+              }
+
+            // Error control (the estimate is written for every dynamic step).
+            double estimate = 0.;
+            if (dynamic)
+              {
+                const auto [error, order] = error_estimate(time_new - time);
+                estimate                  = error;
+                if (adaptive)
+                  {
+                    const double tolerance =
+                      parameters.time.error_tolerance +
+                      parameters.time.relative_error_tolerance * u_new.linfty_norm();
+                    const double factor =
+                      error > 0.
+                        ? std::clamp(0.9 * std::pow(tolerance / error, 1. / (order + 1.)),
+                                     0.2,
+                                     2.)
+                        : 2.;
+                    next_step = std::min(factor * (time_new - time),
+                                         parameters.time.maximum_time_step);
+                    if (error > tolerance)
+                      {
+                        if (time_new - time < 1e-12 * end)
+                          throw SimulationError(
+                            "the error estimate " + std::to_string(error) +
+                            " m stays above the tolerance " + std::to_string(tolerance) +
+                            " m at dt = " + std::to_string(time_new - time) +
+                            " s; output up to t = " + std::to_string(time) + " is kept");
+                        ++rejected;
+                        ++summary.rejected;
+                        nominal_step = next_step;
+                        target       = std::min(time + nominal_step, end);
+                        halvings     = 0;
+                        continue;
+                      }
+                  }
               }
 
             // Accept: shift the state (BDF2 keeps one more).
@@ -312,7 +378,12 @@ namespace clothsim
                                      result.residual_norm,
                                      halvings,
                                      model.energies(u_ghosted, v_ghosted),
-                                     wall_clock.wall_time()});
+                                     wall_clock.wall_time(),
+                                     rejected,
+                                     estimate});
+            rejected = 0;
+            if (adaptive)
+              nominal_step = next_step;
             const bool last = time >= end - epsilon;
             if (last || output_interval == 0. || time >= next_output - epsilon)
               {

@@ -5,11 +5,14 @@
 //   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} =
 //   (u_{n+1} - u_n)/dt.
 // BDF2 (variable step) and the implicit midpoint rule are the same minimisation with
-// other weights and centres (see solve_step).
-// Static mode: the load factor λ goes 1/N, 2/N, ..., 1 (or adaptive increments); each
-// increment minimises W - λ fᵀ u, starting from the secant predictor along the load path.
-// A step whose Newton solve fails (or whose result holds NaN or a collapsed triangle) is
-// retried with half the step, up to 'Maximum step halvings' times, and the log says so.
+// other weights and centres (see solve_step). Adaptive time steps: every dynamic step
+// gets a local error estimate (error_estimate); with 'Adaptive time steps' a step above
+// the tolerance is rejected and retried with dt (tol/err)^(1/(p+1)) 0.9 (factor 0.2 to
+// 2), and accepted steps propose the next dt the same way. Static mode: the load factor λ
+// goes 1/N, 2/N, ..., 1 (or adaptive increments); each increment minimises W - λ fᵀ u,
+// starting from the secant predictor along the load path. A step whose Newton solve fails
+// (or whose result holds NaN or a collapsed triangle) is retried with half the step, up
+// to 'Maximum step halvings' times, and the log says so.
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -37,6 +40,7 @@ namespace clothsim
     unsigned int newton_iterations = 0;
     unsigned int linear_iterations = 0;
     unsigned int retries           = 0;
+    unsigned int rejected          = 0; // steps rejected by the error control
   };
 
   class TimeStepper
@@ -65,6 +69,16 @@ namespace clothsim
     }
 
   private:
+    // Local error estimate (m, largest over the displacement dofs) of the step just
+    // solved (u_new from u_n, v_n over dt) and the order it assumes: the difference to
+    // an explicit Taylor predictor of the method's order, times the ratio of the error
+    // constants (Milne's device): backward Euler ½ |u₊ - u - dt v|; with an
+    // acceleration a = (v - v₋)/dt₋ from the last step, second order
+    // κ |u₊ - u - dt v - dt²/2 a| with κ = 1/6 (midpoint, error dt³/12 u⁽³⁾) or 8/7
+    // (BDF2, error 2/9 dt³ u⁽³⁾, constant steps).
+    std::pair<double, unsigned int>
+    error_estimate(const double dt) const;
+
     // Solves one step of size dt from state n; returns the Newton result, leaves u_new.
     NewtonResult
     solve_step(const double time_new, const double dt, const double load_factor);
@@ -83,6 +97,7 @@ namespace clothsim
     // BDF2: the state before u_n and the step that led from it to u_n (0: none yet).
     VectorType u_nm1, v_nm1; // owned
     double     previous_step = 0.;
+    IndexSet   displacement_dofs; // owned displacement dofs (no director angles)
     // Static mode: the last load increment's displacement change and size, for the
     // secant predictor u_n + (Δλ/Δλ_last) Δu_last.
     VectorType last_increment; // owned
