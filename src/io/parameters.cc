@@ -550,7 +550,9 @@ namespace clothsim
       "methods' error constants; see time/time_stepper.h). A step whose estimate "
       "exceeds 'Error tolerance' + 'Relative error tolerance' x max|u| is "
       "rejected and retried smaller (counted in statistics.csv); accepted steps "
-      "grow by at most 2x. 'Time step' is the first step.");
+      "grow by at most 2x. 'Time step' is the first step. Newton then also "
+      "stops once a full step moves no coordinate by more than a tenth of 'Error "
+      "tolerance' (solving further is below the truncation error).");
     prm.declare_entry("Error tolerance",
                       "1e-4",
                       Patterns::Double(0., 1e3),

@@ -322,7 +322,9 @@ namespace clothsim
 
 
   NewtonResult
-  NewtonSolver::solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u)
+  NewtonSolver::solve(NonlinearProblem              &problem,
+                      TrilinosWrappers::MPI::Vector &u,
+                      const double                   minimum_displacement_tolerance)
   {
     Context context{problem,
                     tangent_matrix,
@@ -385,9 +387,10 @@ namespace clothsim
     auto         residual_small = Teuchos::rcp(new NOX::StatusTest::NormF(tolerance));
     auto converged = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
     converged->addStatusTest(residual_small);
-    if (parameters.displacement_tolerance > 0.)
-      converged->addStatusTest(
-        Teuchos::rcp(new SmallFullStep(parameters.displacement_tolerance)));
+    const double step_tolerance =
+      std::max(parameters.displacement_tolerance, minimum_displacement_tolerance);
+    if (step_tolerance > 0.)
+      converged->addStatusTest(Teuchos::rcp(new SmallFullStep(step_tolerance)));
     auto max_iterations = Teuchos::rcp(new NOX::StatusTest::MaxIters(
       parameters.single_step ? 1 : parameters.max_iterations));
     auto finite         = Teuchos::rcp(new NOX::StatusTest::FiniteValue);

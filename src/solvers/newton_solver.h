@@ -65,9 +65,12 @@ namespace clothsim
                  TimerOutput                     &timer);
 
     // Solves F(u) = 0 starting from u (which satisfies the constraints); u gets the last
-    // iterate.
+    // iterate. `minimum_displacement_tolerance` (m) raises 'Displacement tolerance' for
+    // this solve (adaptive time steps: no effort below the time-error tolerance).
     NewtonResult
-    solve(NonlinearProblem &problem, TrilinosWrappers::MPI::Vector &u);
+    solve(NonlinearProblem              &problem,
+          TrilinosWrappers::MPI::Vector &u,
+          const double                   minimum_displacement_tolerance = 0.);
 
   private:
     const NonlinearSolverParameters parameters;

@@ -160,8 +160,13 @@ namespace clothsim
         model.apply_pinned_displacement(load_factor, u_new);
       }
 
-    StepProblem  problem(model, terms, timer);
-    NewtonResult result = newton.solve(problem, u_new);
+    StepProblem problem(model, terms, timer);
+    // With adaptive steps Newton stops once its updates are a tenth of the time-error
+    // tolerance: solving further would be below the truncation error.
+    const double newton_floor = dynamic && parameters.time.adaptive_time_steps
+                                  ? 0.1 * parameters.time.error_tolerance
+                                  : 0.;
+    NewtonResult result       = newton.solve(problem, u_new, newton_floor);
     if (!result.converged)
       return result;
 
