@@ -256,6 +256,17 @@ namespace
               << " steps, " << rejected << " rejected, largest accepted estimate "
               << largest_estimate << " m, error at t = " << end << " s: " << error
               << " m (" << error / tolerance << " tolerances)" << std::endl;
+        // The per-step time split adds up to no more than the run's wall time.
+        double split = 0.;
+        for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+          split += statistics.number(r, "assembly_seconds") +
+                   statistics.number(r, "linear_solve_seconds");
+        const double wall = statistics.number(statistics.rows.size() - 1, "wall_seconds");
+        passed &= check_above(pcout, "assembly + linear solve seconds", split, 0.);
+        passed &= check_below(pcout,
+                              "(assembly + linear solve) / wall seconds",
+                              split / wall,
+                              1.01);
         passed &= check_above(pcout, "rejected steps", rejected, 0.5);
         passed &= check_below(pcout,
                               "largest accepted error estimate / tolerance",

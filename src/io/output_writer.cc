@@ -30,7 +30,8 @@ namespace clothsim
         statistics_csv
           << "step,time,dt,newton_iterations,linear_iterations,residual,retries,"
              "kinetic_energy,elastic_energy,potential_energy,total_energy,"
-             "wall_seconds,rejected,error_estimate\n"
+             "wall_seconds,rejected,error_estimate,assembly_seconds,"
+             "linear_solve_seconds\n"
           << std::flush;
       }
   }
@@ -78,7 +79,9 @@ namespace clothsim
                    << ',' << e.kinetic << ',' << e.elastic << ',' << e.potential << ','
                    << e.kinetic + e.elastic + e.potential << ',' << std::setprecision(4)
                    << row.wall_seconds << ',' << row.rejected << ','
-                   << std::setprecision(6) << row.error_estimate << '\n'
+                   << std::setprecision(6) << row.error_estimate << ','
+                   << std::setprecision(4) << row.assembly_seconds << ','
+                   << row.linear_solve_seconds << '\n'
                    << std::flush;
   }
 

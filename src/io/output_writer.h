@@ -26,12 +26,14 @@ namespace clothsim
     double       dt;   // s
     unsigned int newton_iterations;
     unsigned int linear_iterations;
-    double       residual;            // final Newton residual 2-norm, N
-    unsigned int retries;             // step halvings before this step was accepted
-    Energies     energies;            // J
-    double       wall_seconds;        // since the run started
-    unsigned int rejected       = 0;  // steps rejected by the error control before it
-    double       error_estimate = 0.; // local error estimate of the step, m (0: none)
+    double       residual;              // final Newton residual 2-norm, N
+    unsigned int retries;               // step halvings before this step was accepted
+    Energies     energies;              // J
+    double       wall_seconds;          // since the run started
+    unsigned int rejected         = 0;  // steps rejected by the error control before it
+    double       error_estimate   = 0.; // local error estimate of the step, m (0: none)
+    double       assembly_seconds = 0.; // wall time of the step spent assembling
+    double       linear_solve_seconds = 0.; // ... in linear solves and preconditioners
   };
 
   class OutputWriter

@@ -225,6 +225,7 @@ namespace clothsim
       {0, 0., 0., 0, 0, 0., 0, model.energies(u_ghosted, v_ghosted), 0.});
     double next_output = interval > 0. ? interval : end;
 
+    StepTimes step_times(timer);
     if (verlet)
       acceleration(u, v, a);
     double       time   = 0.;
@@ -311,8 +312,20 @@ namespace clothsim
             throw SimulationError(message.str());
           }
 
-        output.write_statistics(
-          {step, time, h, 0, 0, 0., 0, energies, wall_clock.wall_time()});
+        const auto spent = step_times.since_last();
+        output.write_statistics({step,
+                                 time,
+                                 h,
+                                 0,
+                                 0,
+                                 0.,
+                                 0,
+                                 energies,
+                                 wall_clock.wall_time(),
+                                 0,
+                                 0.,
+                                 spent.first,
+                                 spent.second});
         if (output_now)
           {
             TimerOutput::Scope scope(timer, "output");

@@ -59,6 +59,24 @@ namespace clothsim
   } // namespace
 
 
+  std::pair<double, double>
+  StepTimes::since_last()
+  {
+    double assembly_total = 0., linear_total = 0.;
+    for (const auto &[section, seconds] :
+         timer.get_summary_data(TimerOutput::total_wall_time))
+      if (section.rfind("assemble", 0) == 0)
+        assembly_total += seconds;
+      else if (section == "linear solve" || section == "preconditioner setup")
+        linear_total += seconds;
+    const std::pair<double, double> step = {assembly_total - assembly,
+                                            linear_total - linear_solve};
+    assembly                             = assembly_total;
+    linear_solve                         = linear_total;
+    return step;
+  }
+
+
   TimeStepper::TimeStepper(const Parameters   &parameters,
                            ClothModel         &model,
                            OutputWriter       &output,
@@ -265,6 +283,8 @@ namespace clothsim
 
     double       time = 0.;
     unsigned int step = 0;
+    StepTimes    step_times(timer);
+    step_times.since_last();
     while (time < end - epsilon)
       {
         // One nominal step, in 2^k sub-steps if Newton needs smaller ones.
@@ -373,8 +393,9 @@ namespace clothsim
             // Shell directors: re-base on the converged state (angles back to zero).
             u_ghosted = u_n;
             model.rebase_directors(u_ghosted, u_n);
-            u_ghosted = u_n;
-            v_ghosted = v_n;
+            u_ghosted        = u_n;
+            v_ghosted        = v_n;
+            const auto spent = step_times.since_last();
             output.write_statistics({step,
                                      time,
                                      dt_taken,
@@ -385,7 +406,9 @@ namespace clothsim
                                      model.energies(u_ghosted, v_ghosted),
                                      wall_clock.wall_time(),
                                      rejected,
-                                     estimate});
+                                     estimate,
+                                     spent.first,
+                                     spent.second});
             rejected = 0;
             if (adaptive)
               nominal_step = next_step;

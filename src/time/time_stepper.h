@@ -33,6 +33,24 @@ namespace clothsim
     using std::runtime_error::runtime_error;
   };
 
+  // Wall time spent in assembly ("assemble ..." sections) and in linear solves ("linear
+  // solve", "preconditioner setup") since the last call, from `timer`'s totals.
+  class StepTimes
+  {
+  public:
+    explicit StepTimes(const TimerOutput &timer)
+      : timer(timer)
+    {}
+
+    // {assembly, linear solve} seconds since the last call.
+    std::pair<double, double>
+    since_last();
+
+  private:
+    const TimerOutput &timer;
+    double             assembly = 0., linear_solve = 0.;
+  };
+
   // Totals of a finished run.
   struct RunSummary
   {
