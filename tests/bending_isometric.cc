@@ -50,17 +50,10 @@
 #include <vector>
 
 using namespace clothsim;
+using clothsim::test::number;
 
 namespace
 {
-  std::string
-  number(const double value)
-  {
-    std::ostringstream out;
-    out << std::setprecision(17) << value;
-    return out.str();
-  }
-
   // 'ux; uy; uz' of the isometry onto the cylinder of radius R whose axis makes the angle
   // β with the x axis (see the file comment).
   std::string

@@ -20,6 +20,7 @@
 #include <iostream>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -157,6 +158,16 @@ namespace clothsim::test
         }
     return Utilities::MPI::sum(energy, model.get_communicator()) /
            Utilities::MPI::sum(area, model.get_communicator());
+  }
+
+  // A parameter value that reads back as the same double ("Time/Time step=" +
+  // number(dt)).
+  inline std::string
+  number(const double value)
+  {
+    std::ostringstream out;
+    out << std::setprecision(17) << value;
+    return out.str();
   }
 
   // Observed order of convergence between two successive levels (mesh size halved).

@@ -40,14 +40,6 @@ namespace
     return history;
   }
 
-  std::string
-  number(const double value)
-  {
-    std::ostringstream out;
-    out << std::setprecision(15) << value;
-    return out.str();
-  }
-
   std::vector<std::pair<double, double>>
   run(const std::string &integrator, const double dt, const double end)
   {

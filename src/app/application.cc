@@ -167,7 +167,8 @@ namespace clothsim
             << double(summary.newton_iterations) / std::max(1u, summary.steps)
             << " per step), linear iterations " << summary.linear_iterations << " ("
             << double(summary.linear_iterations) / std::max(1u, summary.newton_iterations)
-            << " per Newton step), step halvings " << summary.retries << std::endl;
+            << " per Newton step), tangents " << summary.tangents << ", step halvings "
+            << summary.retries << std::endl;
       timer.print_summary();
       return outcome;
     }

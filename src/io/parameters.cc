@@ -621,12 +621,34 @@ namespace clothsim
     prm.declare_entry(
       "Method",
       "newton",
-      Patterns::Selection("newton|single step"),
+      Patterns::Selection("newton|single step|inexact newton|modified newton"),
       "'newton': Newton iterations with line search until the tolerances below "
-      "hold. 'single step': one linearised Newton step per time step, taken in "
+      "hold, each linear solve to 'Linear solver/Relative tolerance'. "
+      "'single step': one linearised Newton step per time step, taken in "
       "full and accepted without a convergence test (Baraff & Witkin 1998): "
       "cheap, but the step's equations are not solved (measure the error against "
-      "'newton'). Static mode needs 'newton'.");
+      "'newton'). Static mode needs a method that converges. "
+      "'inexact newton': as 'newton', but each linear solve stops at the "
+      "Eisenstat-Walker forcing term eta_k = 0.9 (|F_k|/|F_k-1|)^1.5 (their "
+      "choice 2, safeguarded; between the linear solver's tolerance and "
+      "'Forcing term maximum'): loose far from the solution, tight near it; needs "
+      "an iterative linear solver. 'modified newton': a tangent and its "
+      "preconditioner (or factorisation) serve up to 'Jacobian reuse' Newton "
+      "iterations, across time steps while the step size stays the same; a new "
+      "one is computed when an iteration reduces the residual by less than half, "
+      "when the line search cuts a step, or after a failed step. Converges "
+      "linearly: the step tolerances then bound the error only roughly.");
+    prm.declare_entry(
+      "Jacobian reuse",
+      "10",
+      Patterns::Integer(1, 10000),
+      "'modified newton': the most Newton iterations one tangent serves.");
+    prm.declare_entry(
+      "Forcing term maximum",
+      "0.1",
+      Patterns::Double(1e-16, 0.9),
+      "'inexact newton': the loosest relative tolerance of a linear solve (the "
+      "first iteration of every step uses it).");
     prm.declare_entry("Maximum iterations",
                       "25",
                       Patterns::Integer(1, 1000),
@@ -678,7 +700,13 @@ namespace clothsim
   NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Nonlinear solver");
-    single_step            = prm.get("Method") == "single step";
+    const std::string method_name = prm.get("Method");
+    method                 = method_name == "single step"      ? NewtonMethod::single_step
+                             : method_name == "inexact newton" ? NewtonMethod::inexact
+                             : method_name == "modified newton" ? NewtonMethod::modified
+                                                                : NewtonMethod::full;
+    jacobian_reuse         = prm.get_integer("Jacobian reuse");
+    forcing_term_maximum   = prm.get_double("Forcing term maximum");
     max_iterations         = prm.get_integer("Maximum iterations");
     absolute_tolerance     = prm.get_double("Absolute tolerance");
     relative_tolerance     = prm.get_double("Relative tolerance");
@@ -1021,12 +1049,25 @@ namespace clothsim
                        "Time/Error tolerance",
                        "adaptive time steps need a positive absolute or relative "
                        "tolerance");
-    if (parameters.nonlinear_solver.single_step &&
+    if (parameters.nonlinear_solver.method == NewtonMethod::single_step &&
         parameters.time.integrator == Integrator::static_load_steps)
       throw InputError(file,
                        "Nonlinear solver/Method",
-                       "static mode needs 'newton' (a single linearised step does not "
-                       "find the equilibrium)");
+                       "static mode needs a converging method (a single linearised "
+                       "step does not find the equilibrium)");
+    if (parameters.nonlinear_solver.method == NewtonMethod::inexact &&
+        parameters.linear_solver.method == "direct")
+      throw InputError(file,
+                       "Nonlinear solver/Method",
+                       "'inexact newton' sets the tolerance of an iterative linear "
+                       "solver; 'Linear solver/Method' is 'direct'");
+    if (parameters.nonlinear_solver.method == NewtonMethod::inexact &&
+        parameters.nonlinear_solver.forcing_term_maximum <
+          parameters.linear_solver.relative_tolerance)
+      throw InputError(file,
+                       "Nonlinear solver/Forcing term maximum",
+                       "is below 'Linear solver/Relative tolerance', the tightest "
+                       "forcing term");
     if (parameters.mass_spring.strain_limit > 0. &&
         (!mass_spring || parameters.time.integrator == Integrator::static_load_steps))
       throw InputError(file,

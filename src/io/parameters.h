@@ -166,9 +166,20 @@ namespace clothsim
     parse_parameters(ParameterHandler &prm);
   };
 
+  // How each step's nonlinear system is solved.
+  enum class NewtonMethod
+  {
+    full,        // Newton iterations to the tolerances
+    single_step, // one linearised step per time step (Baraff & Witkin 1998)
+    inexact,     // linear tolerance from Eisenstat-Walker forcing terms
+    modified     // a tangent serves several iterations (and steps)
+  };
+
   struct NonlinearSolverParameters
   {
-    bool         single_step; // one linearised step per time step (Baraff & Witkin)
+    NewtonMethod method;
+    unsigned int jacobian_reuse;       // modified: most Newton iterations per tangent
+    double       forcing_term_maximum; // inexact: largest linear relative tolerance
     unsigned int max_iterations;
     double       absolute_tolerance; // N
     double       relative_tolerance;

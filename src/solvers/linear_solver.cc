@@ -129,7 +129,8 @@ namespace clothsim
   LinearSolver::solve(const TrilinosWrappers::SparseMatrix &matrix,
                       TrilinosWrappers::MPI::Vector        &x,
                       const TrilinosWrappers::MPI::Vector  &b,
-                      unsigned int                         &iterations) const
+                      unsigned int                         &iterations,
+                      const std::optional<double>           relative_tolerance) const
   {
     x                   = 0.;
     const double b_norm = b.l2_norm();
@@ -139,7 +140,8 @@ namespace clothsim
         return true;
       }
     SolverControl control(parameters.max_iterations,
-                          parameters.relative_tolerance * b_norm,
+                          relative_tolerance.value_or(parameters.relative_tolerance) *
+                            b_norm,
                           /*log_history=*/false,
                           /*log_result=*/false);
     try

@@ -14,6 +14,7 @@
 #include <Epetra_LinearProblem.h>
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace clothsim
@@ -40,14 +41,22 @@ namespace clothsim
     void
     update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix);
 
-    // Solves A x = b to |b - A x| <= relative_tolerance |b|. Returns false if the Krylov
-    // method did not converge; `iterations` gets the iteration count (1 for the direct
-    // solver).
+    // Solves A x = b to |b - A x| <= relative_tolerance |b| ('Relative tolerance' unless
+    // given: an inexact Newton's forcing term). Returns false if the Krylov method did
+    // not converge; `iterations` gets the iteration count (1 for the direct solver).
+    // 'Relative tolerance' of the parameter file.
+    double
+    default_tolerance() const
+    {
+      return parameters.relative_tolerance;
+    }
+
     bool
     solve(const TrilinosWrappers::SparseMatrix &matrix,
           TrilinosWrappers::MPI::Vector        &x,
           const TrilinosWrappers::MPI::Vector  &b,
-          unsigned int                         &iterations) const;
+          unsigned int                         &iterations,
+          std::optional<double>                 relative_tolerance = {}) const;
 
   private:
     const LinearSolverParameters parameters;

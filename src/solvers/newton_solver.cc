@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace clothsim
 {
@@ -44,17 +45,18 @@ namespace clothsim
     // Shared state of one solve: the problem and work vectors in deal.II's layout.
     struct Context
     {
-      NonlinearProblem               &problem;
-      TrilinosWrappers::SparseMatrix &matrix;
-      LinearSolver                   &linear_solver;
-      TrilinosVector                  u, rhs, solution;
-      TimerOutput                    &timer;
-      const std::string               tangent_mode; // adaptive, projected, exact
-      unsigned int                    linear_iterations      = 0;
-      unsigned int                    projected_fallbacks    = 0;
-      bool                            preconditioner_current = false;
-      bool                            tangent_projected      = false;
-      std::string                     failure;
+      NonlinearProblem                &problem;
+      TrilinosWrappers::SparseMatrix  &matrix;
+      LinearSolver                    &linear_solver;
+      const NonlinearSolverParameters &parameters;
+      NewtonSolver::TangentState      &tangent; // outlives the solve
+      TimerOutput                     &timer;
+      TrilinosVector                   u, rhs, solution;
+      TrilinosVector                   iterate; // where the direction is computed
+      unsigned int                     linear_iterations   = 0;
+      unsigned int                     projected_fallbacks = 0;
+      unsigned int                     tangents            = 0;
+      std::string                      failure;
     };
 
     // NOX's residual callback.
@@ -106,23 +108,29 @@ namespace clothsim
       }
 
       bool
-      applyJacobianInverse(Teuchos::ParameterList &,
+      applyJacobianInverse(Teuchos::ParameterList    &linear_parameters,
                            const NOX::Epetra::Vector &input,
                            NOX::Epetra::Vector       &result) override
       {
         copy(input.getEpetraVector(), context.rhs);
-        bool ok = solve();
+        // Inexact Newton: NOX puts the forcing term η_k into "Tolerance".
+        std::optional<double> tolerance;
+        if (context.parameters.method == NewtonMethod::inexact)
+          tolerance = linear_parameters.get<double>("Tolerance");
+        bool ok = solve(tolerance);
         // Adaptive tangent: an exact Hessian that the solver cannot handle, or whose step
         // is no descent direction of the objective (indefinite), is replaced by the
-        // projected one.
-        if (context.tangent_mode == "adaptive" && !context.tangent_projected &&
+        // projected one at the current iterate.
+        if (context.parameters.tangent == "adaptive" && !context.tangent.projected &&
             (!ok || context.solution * context.rhs <= 0.))
           {
-            context.problem.tangent(last_x, context.matrix, true);
-            context.tangent_projected      = true;
-            context.preconditioner_current = false;
+            context.problem.tangent(context.iterate, context.matrix, true);
+            context.tangent.projected              = true;
+            context.tangent.preconditioner_current = false;
+            context.tangent.uses                   = 1;
+            ++context.tangents;
             ++context.projected_fallbacks;
-            ok = solve();
+            ok = solve(tolerance);
           }
         if (!ok)
           return false;
@@ -131,20 +139,18 @@ namespace clothsim
       }
 
       bool
-      solve()
+      solve(const std::optional<double> tolerance)
       {
-        if (!context.preconditioner_current)
+        if (!context.tangent.preconditioner_current)
           {
             TimerOutput::Scope scope(context.timer, "preconditioner setup");
             context.linear_solver.update_preconditioner(context.matrix);
-            context.preconditioner_current = true;
+            context.tangent.preconditioner_current = true;
           }
         TimerOutput::Scope scope(context.timer, "linear solve");
         unsigned int       iterations = 0;
-        const bool         ok         = context.linear_solver.solve(context.matrix,
-                                                    context.solution,
-                                                    context.rhs,
-                                                    iterations);
+        const bool         ok         = context.linear_solver.solve(
+          context.matrix, context.solution, context.rhs, iterations, tolerance);
         context.linear_iterations += iterations;
         if (!ok)
           context.failure = "linear solver did not converge in " +
@@ -175,10 +181,22 @@ namespace clothsim
       bool
       computeJacobian(const NOX::Epetra::Vector &x) override
       {
-        copy(x.getEpetraVector(), last_x);
-        context.tangent_projected = context.tangent_mode == "projected";
-        context.problem.tangent(last_x, context.matrix, context.tangent_projected);
-        context.preconditioner_current = false;
+        copy(x.getEpetraVector(), context.iterate);
+        NewtonSolver::TangentState &tangent = context.tangent;
+        // Modified Newton keeps the tangent while it contracts well and is not worn out.
+        if (context.parameters.method == NewtonMethod::modified && tangent.reusable &&
+            !tangent.refresh && tangent.uses < context.parameters.jacobian_reuse)
+          {
+            ++tangent.uses;
+            return true;
+          }
+        tangent.projected = context.parameters.tangent == "projected";
+        context.problem.tangent(context.iterate, context.matrix, tangent.projected);
+        tangent.preconditioner_current = false;
+        tangent.reusable               = true;
+        tangent.refresh                = false;
+        tangent.uses                   = 1;
+        ++context.tangents;
         return true;
       }
 
@@ -256,8 +274,7 @@ namespace clothsim
       {}
 
     private:
-      Context       &context;
-      TrilinosVector last_x{context.u}; // where the tangent was last computed
+      Context &context;
     };
 
     // Converged when a full Newton step (no line-search cut) moved no dof by more than
@@ -306,7 +323,57 @@ namespace clothsim
       NOX::StatusTest::StatusType status = NOX::StatusTest::Unevaluated;
     };
 
+    // Never decides; after each iteration it asks for a new tangent if the last one
+    // reduced the residual by less than half or its step had to be cut (modified
+    // Newton's criterion for a worn-out tangent).
+    class TangentMonitor : public NOX::StatusTest::Generic
+    {
+    public:
+      explicit TangentMonitor(NewtonSolver::TangentState &tangent)
+        : tangent(tangent)
+      {}
+
+      NOX::StatusTest::StatusType
+      checkStatus(const NOX::Solver::Generic &solver, NOX::StatusTest::CheckType) override
+      {
+        if (solver.getNumIterations() > 0)
+          {
+            const auto *line_search =
+              dynamic_cast<const NOX::Solver::LineSearchBased *>(&solver);
+            const bool cut = line_search != nullptr && line_search->getStepSize() != 1.;
+            if (cut || solver.getSolutionGroup().getNormF() >
+                         0.5 * solver.getPreviousSolutionGroup().getNormF())
+              tangent.refresh = true;
+          }
+        return NOX::StatusTest::Unconverged;
+      }
+
+      NOX::StatusTest::StatusType
+      getStatus() const override
+      {
+        return NOX::StatusTest::Unconverged;
+      }
+
+      std::ostream &
+      print(std::ostream &stream, int indent = 0) const override
+      {
+        for (int i = 0; i < indent; ++i)
+          stream << ' ';
+        return stream << "tangent reuse monitor\n";
+      }
+
+    private:
+      NewtonSolver::TangentState &tangent;
+    };
+
   } // namespace
+
+
+  void
+  NewtonSolver::invalidate_tangent()
+  {
+    tangent_state.reusable = false;
+  }
 
 
   NewtonSolver::NewtonSolver(const NonlinearSolverParameters &nonlinear,
@@ -326,19 +393,21 @@ namespace clothsim
                       TrilinosWrappers::MPI::Vector &u,
                       const double                   minimum_displacement_tolerance)
   {
-    Context context{problem,
+    Context    context{problem,
                     tangent_matrix,
                     linear_solver,
-                    u,
-                    u,
-                    u,
+                    parameters,
+                    tangent_state,
                     timer,
-                    parameters.tangent,
+                    u,
+                    u,
+                    u,
+                    u,
                     0,
                     0,
-                    false,
-                    false,
+                    0,
                     ""};
+    const bool single_step = parameters.method == NewtonMethod::single_step;
 
     auto interface     = Teuchos::rcp(new Interface(context));
     auto linear_system = Teuchos::rcp(new LinearSystem(context));
@@ -351,9 +420,23 @@ namespace clothsim
              ? NOX::Utils::Error + NOX::Utils::OuterIteration + NOX::Utils::InnerIteration
              : NOX::Utils::Error);
     nox_parameters->sublist("Direction").set("Method", "Newton");
-    nox_parameters->sublist("Direction")
-      .sublist("Newton")
-      .set("Rescue Bad Newton Solve", false);
+    Teuchos::ParameterList &newton_parameters =
+      nox_parameters->sublist("Direction").sublist("Newton");
+    newton_parameters.set("Rescue Bad Newton Solve", false);
+    if (parameters.method == NewtonMethod::inexact)
+      {
+        // Eisenstat & Walker's choice 2 with their γ = 0.9, α = 1.5 (NOX's "Type 2"),
+        // never tighter than the fixed linear tolerance.
+        newton_parameters.set("Forcing Term Method", "Type 2");
+        newton_parameters.set("Forcing Term Initial Tolerance",
+                              parameters.forcing_term_maximum);
+        newton_parameters.set("Forcing Term Maximum Tolerance",
+                              parameters.forcing_term_maximum);
+        newton_parameters.set("Forcing Term Minimum Tolerance",
+                              linear_solver.default_tolerance());
+        newton_parameters.set("Forcing Term Alpha", 1.5);
+        newton_parameters.set("Forcing Term Gamma", 0.9);
+      }
     Teuchos::ParameterList &line_search_parameters =
       nox_parameters->sublist("Line Search");
     auto line_search = Teuchos::rcp(new EnergyLineSearch(
@@ -362,7 +445,7 @@ namespace clothsim
         return context.problem.objective(context.u);
       },
       /*max_halvings=*/30));
-    if (parameters.line_search == "full step" || parameters.single_step)
+    if (parameters.line_search == "full step" || single_step)
       line_search_parameters.set("Method", "Full Step");
     else
       {
@@ -391,13 +474,15 @@ namespace clothsim
       std::max(parameters.displacement_tolerance, minimum_displacement_tolerance);
     if (step_tolerance > 0.)
       converged->addStatusTest(Teuchos::rcp(new SmallFullStep(step_tolerance)));
-    auto max_iterations = Teuchos::rcp(new NOX::StatusTest::MaxIters(
-      parameters.single_step ? 1 : parameters.max_iterations));
-    auto finite         = Teuchos::rcp(new NOX::StatusTest::FiniteValue);
+    auto max_iterations = Teuchos::rcp(
+      new NOX::StatusTest::MaxIters(single_step ? 1 : parameters.max_iterations));
+    auto finite = Teuchos::rcp(new NOX::StatusTest::FiniteValue);
     auto status = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
     status->addStatusTest(finite);
     status->addStatusTest(converged);
     status->addStatusTest(max_iterations);
+    if (parameters.method == NewtonMethod::modified)
+      status->addStatusTest(Teuchos::rcp(new TangentMonitor(tangent_state)));
 
     NewtonResult result;
     if (!std::isfinite(initial_norm))
@@ -431,16 +516,19 @@ namespace clothsim
     result.iterations          = solver->getNumIterations();
     result.linear_iterations   = context.linear_iterations;
     result.projected_fallbacks = context.projected_fallbacks;
+    result.tangents            = context.tangents;
     result.residual_norm       = final_group.isF() ? final_group.getNormF() : -1.;
     result.converged =
       outcome == NOX::StatusTest::Converged && std::isfinite(result.residual_norm);
     // A single linearised step is accepted as it is, unless it failed outright.
-    if (parameters.single_step && context.failure.empty() &&
+    if (single_step && context.failure.empty() &&
         finite->getStatus() != NOX::StatusTest::Failed &&
         std::isfinite(result.residual_norm))
       result.converged = true;
     if (!result.converged)
       {
+        // The tangent may be why it failed: the retry starts with a new one.
+        invalidate_tangent();
         if (!context.failure.empty())
           result.failure = context.failure;
         else if (finite->getStatus() == NOX::StatusTest::Failed)

@@ -6,8 +6,11 @@
 // objective (a user merit function), so each step minimises an incremental potential
 // rather than
 // ||F||² (Gast & Schroeder 2014). NOX's "Rescue Bad Newton Solve" is off: a failed linear
-// solve fails the Newton solve, and the caller cuts the step. 'Method = single step'
-// takes one full linearised step and accepts it (Baraff & Witkin 1998).
+// solve fails the Newton solve, and the caller cuts the step. The variants: 'single step'
+// takes one full linearised step and accepts it (Baraff & Witkin 1998); 'inexact newton'
+// solves each linear system only to NOX's Eisenstat-Walker forcing term (Eisenstat &
+// Walker 1996, choice 2); 'modified newton' keeps a tangent and its preconditioner for
+// several iterations, across solves, as CVODE's Newton does (Hindmarsh et al. 2005).
 
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -50,8 +53,9 @@ namespace clothsim
     unsigned int linear_iterations = 0;  // summed over the Newton iterations
     double       residual_norm     = 0.; // ||F|| at the returned iterate, N
     unsigned int projected_fallbacks =
-      0;                 // iterations that fell back to the projected tangent
-    std::string failure; // why it failed, if it did
+      0;                       // iterations that fell back to the projected tangent
+    unsigned int tangents = 0; // tangents assembled (fewer than iterations if reused)
+    std::string  failure;      // why it failed, if it did
   };
 
   class NewtonSolver
@@ -72,10 +76,27 @@ namespace clothsim
           TrilinosWrappers::MPI::Vector &u,
           const double                   minimum_displacement_tolerance = 0.);
 
+    // The next solve computes a new tangent ('modified newton' reuses the last one
+    // otherwise): call when the problem's tangent changed other than through u, e.g. a
+    // new time step size.
+    void
+    invalidate_tangent();
+
+    // What 'modified newton' carries from one iteration, and one solve, to the next.
+    struct TangentState
+    {
+      bool         reusable               = false; // the matrix holds a usable tangent
+      bool         preconditioner_current = false; // built for the matrix as it is
+      bool         projected              = false; // the matrix is the projected one
+      bool         refresh = false; // the last iteration converged too slowly
+      unsigned int uses    = 0;     // iterations it has served
+    };
+
   private:
     const NonlinearSolverParameters parameters;
     LinearSolver                    linear_solver;
     TrilinosWrappers::SparseMatrix &tangent_matrix;
     TimerOutput                    &timer;
+    TangentState                    tangent_state;
   };
 } // namespace clothsim

@@ -179,6 +179,11 @@ namespace clothsim
       }
 
     StepProblem problem(model, terms, timer);
+    // A tangent kept by 'modified newton' is one of these weights only.
+    if (terms.inertia_weight != tangent_weights.first ||
+        terms.damping_weight != tangent_weights.second)
+      newton.invalidate_tangent();
+    tangent_weights = {terms.inertia_weight, terms.damping_weight};
     // With adaptive steps Newton stops once its updates are a tenth of the time-error
     // tolerance: solving further would be below the truncation error.
     const double newton_floor = dynamic && parameters.time.adaptive_time_steps
@@ -303,6 +308,7 @@ namespace clothsim
             const NewtonResult result =
               solve_step(time_new, time_new - time, dynamic ? 1. : time_new);
             summary.newton_iterations += result.iterations;
+            summary.tangents += result.tangents;
             last_iterations = result.iterations;
             summary.linear_iterations += result.linear_iterations;
             if (!result.converged)

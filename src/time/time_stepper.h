@@ -59,6 +59,7 @@ namespace clothsim
     unsigned int linear_iterations = 0;
     unsigned int retries           = 0;
     unsigned int rejected          = 0; // steps rejected by the error control
+    unsigned int tangents          = 0; // tangents assembled
   };
 
   class TimeStepper
@@ -115,7 +116,9 @@ namespace clothsim
     // BDF2: the state before u_n and the step that led from it to u_n (0: none yet).
     VectorType u_nm1, v_nm1; // owned
     double     previous_step = 0.;
-    IndexSet   displacement_dofs; // owned displacement dofs (no director angles)
+    // The inertia and damping weights of the last step's tangent.
+    std::pair<double, double> tangent_weights = {-1., -1.};
+    IndexSet displacement_dofs; // owned displacement dofs (no director angles)
     // Static mode: the last load increment's displacement change and size, for the
     // secant predictor u_n + (Δλ/Δλ_last) Δu_last.
     VectorType last_increment; // owned
