@@ -93,8 +93,8 @@ namespace clothsim
     // an explicit Taylor predictor of the method's order, times the ratio of the error
     // constants (Milne's device): backward Euler ½ |u₊ - u - dt v|; with an
     // acceleration a = (v - v₋)/dt₋ from the last step, second order
-    // κ |u₊ - u - dt v - dt²/2 a| with κ = 1/6 (midpoint, error dt³/12 u⁽³⁾) or 8/7
-    // (BDF2, error 2/9 dt³ u⁽³⁾, constant steps).
+    // κ |u₊ - u - dt v - dt²/2 a| with κ from the step ratio (at constant steps 1/6 for
+    // the midpoint rule, error dt³/12 u⁽³⁾, and 8/7 for BDF2, error 2/9 dt³ u⁽³⁾).
     std::pair<double, unsigned int>
     error_estimate(const double dt) const;
 
