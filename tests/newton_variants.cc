@@ -10,6 +10,11 @@
 //    the same solution to round-off.
 // 4. The invariants of the counts: a run never assembles more tangents than it takes
 //    Newton iterations.
+// 5. Adaptive midpoint steps at a tolerance of 1e-5 m from dt = 1/60 s: the first steps
+//    are rejected and shrink fivefold, which scales the tangent; the linear solves still
+//    converge (no Newton failure, no step halving), and the steps grow back (at most 15
+//    steps for 0.05 s; a stale halving once shrank them geometrically towards a fixed
+//    time, and AMG on the old aggregates failed in 2000 CG iterations).
 
 #include "scene_run.h"
 
@@ -123,6 +128,24 @@ main(int argc, char **argv)
                           "tangents - Newton iterations",
                           double(r->summary.tangents) - r->summary.newton_iterations,
                           0.5);
+
+  pcout << "5. adaptive steps with rejections" << std::endl;
+  const SceneRun adaptive = run_scene(scene,
+                                      {"Time/Integrator=implicit midpoint",
+                                       "Time/Adaptive time steps=true",
+                                       "Time/Error tolerance=1e-5",
+                                       "Time/End time=0.05"},
+                                      directory,
+                                      MPI_COMM_WORLD);
+  report(pcout, "adaptive midpoint", adaptive);
+  passed &= check_above(pcout, "rejected steps", adaptive.summary.rejected, 0.5);
+  passed &= check_below(pcout, "step halvings", adaptive.summary.retries, 0.5);
+  passed &= check_below(pcout, "steps", adaptive.summary.steps, 15.5);
+  passed &= check_below(pcout,
+                        "linear iterations per Newton iteration",
+                        double(adaptive.summary.linear_iterations) /
+                          adaptive.summary.newton_iterations,
+                        30.);
 
   pcout << (passed ? "PASSED" : "FAILED") << std::endl;
   return passed ? 0 : 1;

@@ -61,10 +61,13 @@ namespace clothsim
     // Aggregates built from an early tangent (the unstressed sheet has no out-of-plane
     // stiffness) stop fitting as the sheet deforms: reuse them only while CG needs at
     // most 30 % more iterations than right after they were built.
-    const bool aggregates_fit = last_iterations <= 1.3 * iterations_after_rebuild + 1;
-    const bool block_mode     = near_null_space.displacement_dofs.size() > 0;
-    if (parameters.preconditioner == "amg" && amg != nullptr && !block_mode &&
-        parameters.amg_reuse_aggregates && aggregates_fit)
+    const bool aggregates_fit =
+      !force_rebuild && last_iterations <= 1.3 * iterations_after_rebuild + 1;
+    const bool block_mode = near_null_space.displacement_dofs.size() > 0;
+    force_rebuild         = false;
+    reused = parameters.preconditioner == "amg" && amg != nullptr && !block_mode &&
+             parameters.amg_reuse_aggregates && aggregates_fit;
+    if (reused)
       {
         // Same sparsity, new entries: keep the aggregates, rebuild the smoothed
         // prolongators and coarse operators (ML's ReComputePreconditioner), several times
@@ -187,13 +190,15 @@ namespace clothsim
       }
     catch (const SolverControl::NoConvergence &)
       {
-        iterations = control.last_step();
+        iterations    = control.last_step();
+        force_rebuild = true;
         return false;
       }
     catch (const std::exception &)
       {
         // AztecOO reports breakdowns (e.g. CG on an indefinite matrix) as exceptions too.
-        iterations = control.last_step();
+        iterations    = control.last_step();
+        force_rebuild = true;
         return false;
       }
     iterations      = control.last_step();

@@ -41,6 +41,22 @@ namespace clothsim
     void
     update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix);
 
+    // The next update_preconditioner builds the AMG hierarchy afresh (a changed time step
+    // scales the tangent, and a hierarchy recomputed on old aggregates can then fail).
+    // A failed solve does the same by itself.
+    void
+    rebuild_next()
+    {
+      force_rebuild = true;
+    }
+
+    // Whether the current preconditioner reuses aggregates of an earlier tangent.
+    bool
+    reuses_aggregates() const
+    {
+      return reused;
+    }
+
     // Solves A x = b to |b - A x| <= relative_tolerance |b| ('Relative tolerance' unless
     // given: an inexact Newton's forcing term). Returns false if the Krylov method did
     // not converge; `iterations` gets the iteration count (1 for the direct solver).
@@ -76,6 +92,8 @@ namespace clothsim
     mutable unsigned int last_iterations          = 0;
     mutable unsigned int iterations_after_rebuild = 0;
     mutable bool         awaiting_first_solve     = false;
+    mutable bool         force_rebuild            = false;
+    bool                 reused                   = false;
     bool                 factorization_ok         = false;
   };
 } // namespace clothsim

@@ -147,11 +147,26 @@ namespace clothsim
             context.linear_solver.update_preconditioner(context.matrix);
             context.tangent.preconditioner_current = true;
           }
-        TimerOutput::Scope scope(context.timer, "linear solve");
-        unsigned int       iterations = 0;
-        const bool         ok         = context.linear_solver.solve(
-          context.matrix, context.solution, context.rhs, iterations, tolerance);
+        unsigned int iterations = 0;
+        bool         ok         = false;
+        {
+          TimerOutput::Scope scope(context.timer, "linear solve");
+          ok = context.linear_solver.solve(
+            context.matrix, context.solution, context.rhs, iterations, tolerance);
+        }
         context.linear_iterations += iterations;
+        // A hierarchy on old aggregates can fail where a fresh one converges: one retry.
+        if (!ok && context.linear_solver.reuses_aggregates())
+          {
+            {
+              TimerOutput::Scope scope(context.timer, "preconditioner setup");
+              context.linear_solver.update_preconditioner(context.matrix);
+            }
+            TimerOutput::Scope scope(context.timer, "linear solve");
+            ok = context.linear_solver.solve(
+              context.matrix, context.solution, context.rhs, iterations, tolerance);
+            context.linear_iterations += iterations;
+          }
         if (!ok)
           context.failure = "linear solver did not converge in " +
                             std::to_string(iterations) + " iterations";
@@ -370,9 +385,11 @@ namespace clothsim
 
 
   void
-  NewtonSolver::invalidate_tangent()
+  NewtonSolver::invalidate_tangent(const bool rescaled)
   {
     tangent_state.reusable = false;
+    if (rescaled)
+      linear_solver.rebuild_next();
   }
 
 

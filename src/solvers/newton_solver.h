@@ -78,9 +78,10 @@ namespace clothsim
 
     // The next solve computes a new tangent ('modified newton' reuses the last one
     // otherwise): call when the problem's tangent changed other than through u, e.g. a
-    // new time step size.
+    // new time step size. `rescaled`: it changed so much (a step size more than halved
+    // or doubled) that the AMG hierarchy is built afresh rather than on old aggregates.
     void
-    invalidate_tangent();
+    invalidate_tangent(const bool rescaled = false);
 
     // What 'modified newton' carries from one iteration, and one solve, to the next.
     struct TangentState
