@@ -9,6 +9,8 @@
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
+#include <sstream>
+
 namespace clothsim
 {
   LinearSolver::LinearSolver(const LinearSolverParameters &parameters,
@@ -155,11 +157,17 @@ namespace clothsim
                    ExcInternalError());
             iterations = 1;
             if (!factorization_ok)
-              return false;
+              {
+                last_failure = "the direct solver's factorisation failed";
+                return false;
+              }
             direct_problem->SetLHS(&x.trilinos_vector());
             direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
               static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));
-            return direct_solver->Solve() == 0;
+            const bool solved = direct_solver->Solve() == 0;
+            if (!solved)
+              last_failure = "the direct solve failed";
+            return solved;
           }
         if (block_preconditioner && parameters.preconditioner == "amg")
           {
@@ -192,13 +200,27 @@ namespace clothsim
       {
         iterations    = control.last_step();
         force_rebuild = true;
+        last_failure  = parameters.method + " did not converge in " +
+                       std::to_string(iterations) + " iterations";
         return false;
       }
-    catch (const std::exception &)
+    catch (const std::exception &e)
       {
-        // AztecOO reports breakdowns (e.g. CG on an indefinite matrix) as exceptions too.
-        iterations    = control.last_step();
-        force_rebuild = true;
+        // AztecOO reports breakdowns (e.g. CG on an indefinite matrix) as exceptions too,
+        // possibly before the first iteration; deal.II's text without its stack trace.
+        iterations =
+          control.last_step() == numbers::invalid_unsigned_int ? 0 : control.last_step();
+        force_rebuild      = true;
+        std::string reason = e.what();
+        if (const auto *deal_ii = dynamic_cast<const ExceptionBase *>(&e))
+          {
+            std::ostringstream info;
+            deal_ii->print_info(info);
+            reason = info.str();
+          }
+        reason.erase(0, reason.find_first_not_of(" \n"));
+        reason.erase(reason.find_last_not_of(" \n") + 1);
+        last_failure = parameters.method + " failed (" + reason + ")";
         return false;
       }
     iterations      = control.last_step();

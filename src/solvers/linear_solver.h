@@ -15,6 +15,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace clothsim
@@ -48,6 +49,14 @@ namespace clothsim
     rebuild_next()
     {
       force_rebuild = true;
+    }
+
+    // Why the last solve failed: no convergence within the iteration limit, a Krylov
+    // breakdown (CG on an indefinite tangent), or a failed factorisation.
+    const std::string &
+    failure() const
+    {
+      return last_failure;
     }
 
     // Whether the current preconditioner reuses aggregates of an earlier tangent.
@@ -93,7 +102,8 @@ namespace clothsim
     mutable unsigned int iterations_after_rebuild = 0;
     mutable bool         awaiting_first_solve     = false;
     mutable bool         force_rebuild            = false;
-    bool                 reused                   = false;
-    bool                 factorization_ok         = false;
+    mutable std::string  last_failure;
+    bool                 reused           = false;
+    bool                 factorization_ok = false;
   };
 } // namespace clothsim

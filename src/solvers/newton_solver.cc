@@ -168,8 +168,7 @@ namespace clothsim
             context.linear_iterations += iterations;
           }
         if (!ok)
-          context.failure = "linear solver did not converge in " +
-                            std::to_string(iterations) + " iterations";
+          context.failure = "linear solver: " + context.linear_solver.failure();
         return ok;
       }
 
