@@ -1,9 +1,8 @@
 // The implicit integrators on the pre-stressed square membrane vibrating in its first
 // mode (params/benchmarks/membrane-vibration.prm; f_11 = 2.67929 Hz, period T = 0.373234
 // s):
-// 1. Frequency: the implicit midpoint rule at T/80 over five periods gives f_11 within 1
-// %
-//    (zero crossings of the centre's deflection).
+// 1. Frequency: the implicit midpoint rule at T/80 over five periods gives f_11 within
+//    1 % (zero crossings of the centre's deflection).
 // 2. Numerical damping over those five periods, per integrator: the midpoint rule keeps
 //    the amplitude (loss below 0.5 %), BDF2 damps less than backward Euler.
 // 3. Temporal convergence: the largest error of the centre's deflection over one period
@@ -13,6 +12,12 @@
 // 4. Energy: the midpoint rule at T/16 over 100 periods keeps the total energy within
 //    0.5 % of the vibration's energy (the largest kinetic energy; the pre-stress energy
 //    is a constant far larger).
+// 5. The single linearised step against full Newton (see below).
+// 6. Adaptive steps with a tolerance per step (see below).
+// 7. Accuracy target (error per unit step) over one period: the error at the end against
+//    the fine reference is below the target, the run's estimate (its summed local
+//    estimates) is below the target too and at least half the actual error, and a target
+//    four times smaller gives a smaller error.
 
 #include "csv.h"
 #include "scene_run.h"
@@ -276,6 +281,36 @@ namespace
       }
     return passed;
   }
+
+  bool
+  check_accuracy_target(ConditionalOStream &pcout)
+  {
+    const double        end       = 0.4;
+    const double        reference = run("implicit midpoint", 0.0003125, end).back().second;
+    bool                passed    = true;
+    std::vector<double> errors;
+    for (const double target : {4e-5, 1e-5})
+      {
+        const SceneRun result = run_scene(benchmark,
+                                          {"Time/Integrator=implicit midpoint",
+                                           "Time/Accuracy target=" + number(target),
+                                           "Time/Time step=0.01",
+                                           "Time/End time=" + number(end)},
+                                          directory,
+                                          MPI_COMM_WORLD);
+        const double   error = std::abs(centre_history().back().second - reference);
+        const double   estimate = result.summary.estimated_error;
+        pcout << "  target " << target << " m: " << result.summary.steps << " steps, "
+              << result.summary.rejected << " rejected, estimated error " << estimate
+              << " m, error at t = " << end << " s: " << error << " m" << std::endl;
+        passed &= check_below(pcout, "error / target", error / target, 1.);
+        passed &= check_below(pcout, "estimate / target", estimate / target, 1. + 1e-9);
+        passed &= check_above(pcout, "estimate / error", estimate / error, 0.5);
+        errors.push_back(error);
+      }
+    passed &= check_below(pcout, "error ratio at target / 4", errors[1] / errors[0], 1.);
+    return passed;
+  }
 } // namespace
 
 
@@ -295,6 +330,8 @@ main(int argc, char **argv)
   passed &= check_single_step(pcout);
   pcout << "6. adaptive steps" << std::endl;
   passed &= check_adaptive(pcout);
+  pcout << "7. accuracy target" << std::endl;
+  passed &= check_accuracy_target(pcout);
   pcout << (passed ? "PASSED" : "FAILED") << std::endl;
   return passed ? 0 : 1;
 }

@@ -131,6 +131,10 @@ namespace clothsim
             pcout << "  note: springs carry no rotation; the clamped groups hold their "
                      "vertices' positions only\n";
         }
+      if (parameters.time.accuracy_target > 0.)
+        pcout << "  accuracy target " << parameters.time.accuracy_target
+              << " m: adaptive steps, each step's local error at most the target x dt / "
+              << parameters.time.end_time << " s, Newton to a tenth of that\n";
       for (const ProbeLocation &probe : scene.probes)
         pcout << "  probe " << probe.name << " at vertex " << probe.reference_point
               << "\n";
@@ -169,6 +173,14 @@ namespace clothsim
             << double(summary.linear_iterations) / std::max(1u, summary.newton_iterations)
             << " per Newton step), tangents " << summary.tangents << ", step halvings "
             << summary.retries << std::endl;
+      if (parameters.time.adaptive_time_steps)
+        {
+          pcout << "estimated error at the end: " << summary.estimated_error
+                << " m (the accepted steps' local error estimates, summed";
+          if (parameters.time.accuracy_target > 0.)
+            pcout << "; accuracy target " << parameters.time.accuracy_target << " m";
+          pcout << "); " << summary.rejected << " steps rejected" << std::endl;
+        }
       timer.print_summary();
       return outcome;
     }

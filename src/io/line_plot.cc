@@ -1,6 +1,6 @@
-// Line plots drawn into an RGB buffer (Bresenham lines, a 5x7 bitmap font with
-// descenders) and written as an 8-bit RGB PNG: signature, IHDR, one zlib-compressed IDAT
-// with filter type 0 on every row, IEND.
+// Line plots drawn into an RGB buffer (Bresenham lines, disc markers, a 5x7 bitmap font
+// with descenders) on linear or log10 axes, written as an 8-bit RGB PNG: signature, IHDR,
+// one zlib-compressed IDAT with filter type 0 on every row, IEND.
 
 #include "io/line_plot.h"
 
@@ -23,6 +23,7 @@ namespace clothsim::io
     constexpr Color black{{0, 0, 0}};
     constexpr Color white{{255, 255, 255}};
     constexpr Color grid_grey{{225, 225, 225}};
+    constexpr Color minor_grey{{240, 240, 240}}; // minor grid of log axes
 
     // Font for ASCII 32..126: 8 rows per glyph (row 7 only for descenders), one byte per
     // row, bit 4 the leftmost of 5 columns. Text advances 6 px per character.
@@ -230,6 +231,17 @@ namespace clothsim::io
       image.fill(x, y, x + 1, y + 1, c);
     }
 
+    // Filled disc, 6 px across with the corners cut, centred like dot() on (x + 0.5,
+    // y + 0.5) so that it sits on a line through (x, y).
+    void
+    marker(Image &image, const int x, const int y, const Color &c)
+    {
+      for (int dy = -2; dy <= 3; ++dy)
+        for (int dx = -2; dx <= 3; ++dx)
+          if ((dx - 0.5) * (dx - 0.5) + (dy - 0.5) * (dy - 0.5) <= 8.5)
+            image.set(x + dx, y + dy, c);
+    }
+
     // Bresenham line of dots. `dash` (null: solid) counts dots along a series so that
     // dashes (10 on, 6 off) continue across segments.
     void
@@ -407,17 +419,191 @@ namespace clothsim::io
     }
 
 
-    // Pixel of a data value on an axis running from pixel p0 (at lo) to p1 (at hi).
-    int
-    to_pixel(const double value, const Axis &axis, const int p0, const int p1)
+    // An axis as drawn, in axis coordinates: the value on a linear axis, its log10 on a
+    // log axis. Range [lo, hi], labelled ticks, and unlabelled minor grid lines.
+    struct Scale
     {
-      const double p = p0 + (value - axis.lo) / (axis.hi - axis.lo) * (p1 - p0);
+      bool                     log = false;
+      double                   lo = 0., hi = 1.;
+      std::vector<double>      major;
+      std::vector<std::string> labels; // one per major tick
+      std::vector<double>      minor;
+    };
+
+    Scale
+    make_linear_scale(const double vmin, const double vmax)
+    {
+      const Axis axis = make_axis(vmin, vmax);
+      Scale      scale;
+      scale.lo = axis.lo;
+      scale.hi = axis.hi;
+      for (long long i = axis.first; i <= axis.last; ++i)
+        scale.major.push_back(static_cast<double>(i) * axis.step);
+      scale.labels = tick_labels(axis);
+      return scale;
+    }
+
+    // Log axis for data with log10 in [lmin, lmax] (lmin > lmax: no data): 5% margin in
+    // log space; labelled ticks at the decades (every 2nd, 5th, 10th, ... if there are
+    // more than 8), else at 1, 2, 5 x 10^k, else at 1..9 x 10^k, else at a linear step,
+    // whichever first gives at least two.
+    Scale
+    make_log_scale(double lmin, double lmax)
+    {
+      if (!(lmin <= lmax))
+        {
+          lmin = 0.;
+          lmax = 1.;
+        }
+      lmin = std::clamp(lmin, -300., 300.);
+      lmax = std::clamp(lmax, -300., 300.);
+      if (lmax - lmin <= 1e-9) // constant: a factor 2 on either side
+        {
+          const double mid = 0.5 * (lmin + lmax);
+          lmin             = mid - std::log10(2.);
+          lmax             = mid + std::log10(2.);
+        }
+      Scale scale;
+      scale.log           = true;
+      const double margin = 0.05 * (lmax - lmin);
+      scale.lo            = lmin - margin;
+      scale.hi            = lmax + margin;
+
+      constexpr double eps   = 1e-9;
+      const auto       label = [](const int mantissa, const long long exponent) {
+        return std::to_string(mantissa) + "e" + std::to_string(exponent);
+      };
+      const auto inside = [&](const double c) {
+        return c >= scale.lo - eps && c <= scale.hi + eps;
+      };
+      const long long k0 = static_cast<long long>(std::ceil(scale.lo - eps));
+      const long long k1 = static_cast<long long>(std::floor(scale.hi + eps));
+      if (k1 - k0 + 1 >= 2)
+        {
+          // Decades; every step-th one if there are too many to label.
+          long long step = 1, first = k0, last = k1;
+          for (long long base = 1;; base *= 10)
+            {
+              bool found = false;
+              for (const long long factor : {1, 2, 5})
+                {
+                  step  = factor * base;
+                  first = static_cast<long long>(std::ceil(double(k0) / step));
+                  last  = static_cast<long long>(std::floor(double(k1) / step));
+                  if (last - first + 1 <= 8)
+                    {
+                      found = true;
+                      break;
+                    }
+                }
+              if (found)
+                break;
+            }
+          for (long long i = first; i <= last; ++i)
+            {
+              scale.major.push_back(static_cast<double>(i * step));
+              scale.labels.push_back(label(1, i * step));
+            }
+          if (step == 1)
+            {
+              for (long long k = k0 - 1; k <= k1; ++k)
+                for (int m = 2; m <= 9; ++m)
+                  if (inside(k + std::log10(m)))
+                    scale.minor.push_back(k + std::log10(m));
+            }
+          else
+            for (long long k = k0; k <= k1; ++k)
+              if (k % step != 0)
+                scale.minor.push_back(static_cast<double>(k));
+          return scale;
+        }
+
+      // Less than two decades inside: label multiples of the decade.
+      const std::vector<int> sets[2] = {{1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}};
+      for (const std::vector<int> &mantissas : sets)
+        {
+          Scale candidate = scale;
+          for (long long k = k0 - 1; k <= k1; ++k)
+            for (int m = 1; m <= 9; ++m)
+              {
+                const double c = k + std::log10(m);
+                if (!inside(c))
+                  continue;
+                if (std::find(mantissas.begin(), mantissas.end(), m) != mantissas.end())
+                  {
+                    candidate.major.push_back(c);
+                    candidate.labels.push_back(label(m, k));
+                  }
+                else
+                  candidate.minor.push_back(c);
+              }
+          if (candidate.major.size() >= 2)
+            return candidate;
+        }
+
+      // Less than a factor 2 wide: a linear 1, 2 or 5 x 10^k step with 2 to 6 ticks.
+      Axis axis;
+      axis.lo       = std::pow(10., scale.lo);
+      axis.hi       = std::pow(10., scale.hi);
+      double decade = std::pow(10., std::floor(std::log10((axis.hi - axis.lo) / 10.)));
+      const double factors[3] = {1., 2., 5.};
+      for (unsigned int k = 0;; ++k)
+        {
+          axis.step = factors[k % 3] * decade;
+          axis.first =
+            std::max(1LL, static_cast<long long>(std::ceil(axis.lo / axis.step - 1e-9)));
+          axis.last = static_cast<long long>(std::floor(axis.hi / axis.step + 1e-9));
+          if (axis.last - axis.first + 1 <= 6)
+            break;
+          if (k % 3 == 2)
+            decade *= 10.;
+        }
+      if (axis.last < axis.first) // cannot happen for a range wider than round-off
+        axis.last = axis.first;
+      for (long long i = axis.first; i <= axis.last; ++i)
+        scale.major.push_back(std::log10(static_cast<double>(i) * axis.step));
+      scale.labels = tick_labels(axis);
+      return scale;
+    }
+
+    // Whether the grid lines, minor ones included, are at least 3 px apart on an axis
+    // `pixels` long.
+    bool
+    minor_grid_fits(const Scale &scale, const int pixels)
+    {
+      std::vector<double> lines = scale.major;
+      lines.insert(lines.end(), scale.minor.begin(), scale.minor.end());
+      std::sort(lines.begin(), lines.end());
+      const double per_unit = std::abs(pixels) / (scale.hi - scale.lo);
+      for (std::size_t i = 1; i < lines.size(); ++i)
+        if ((lines[i] - lines[i - 1]) * per_unit < 3.)
+          return false;
+      return true;
+    }
+
+    // Pixel of an axis coordinate on an axis running from pixel p0 (at lo) to p1 (at hi).
+    int
+    to_pixel(const double value, const Scale &scale, const int p0, const int p1)
+    {
+      const double p = p0 + (value - scale.lo) / (scale.hi - scale.lo) * (p1 - p0);
       return static_cast<int>(std::lround(std::clamp(p, -1e6, 1e6)));
     }
 
     void
     draw_panel(Image &image, const PlotPanel &panel, const int top, const int height)
     {
+      // Points drawn: finite, and positive on a log axis. Their axis coordinates.
+      const auto drawn = [&panel](const double x, const double y) {
+        return std::isfinite(x) && std::isfinite(y) && (!panel.log_x || x > 0.) &&
+               (!panel.log_y || y > 0.);
+      };
+      const auto x_coordinate = [&panel](const double x) {
+        return panel.log_x ? std::log10(x) : x;
+      };
+      const auto y_coordinate = [&panel](const double y) {
+        return panel.log_y ? std::log10(y) : y;
+      };
+
       // Data ranges.
       double x_min = HUGE_VAL, x_max = -HUGE_VAL, y_min = HUGE_VAL, y_max = -HUGE_VAL;
       for (const PlotSeries &s : panel.series)
@@ -426,18 +612,20 @@ namespace clothsim::io
             throw std::invalid_argument("write_line_plot: series '" + s.label +
                                         "' has x and y of different lengths");
           for (std::size_t i = 0; i < s.x.size(); ++i)
-            if (std::isfinite(s.x[i]) && std::isfinite(s.y[i]))
+            if (drawn(s.x[i], s.y[i]))
               {
-                x_min = std::min(x_min, s.x[i]);
-                x_max = std::max(x_max, s.x[i]);
-                y_min = std::min(y_min, s.y[i]);
-                y_max = std::max(y_max, s.y[i]);
+                x_min = std::min(x_min, x_coordinate(s.x[i]));
+                x_max = std::max(x_max, x_coordinate(s.x[i]));
+                y_min = std::min(y_min, y_coordinate(s.y[i]));
+                y_max = std::max(y_max, y_coordinate(s.y[i]));
               }
         }
-      const Axis                     x_axis   = make_axis(x_min, x_max);
-      const Axis                     y_axis   = make_axis(y_min, y_max);
-      const std::vector<std::string> x_labels = tick_labels(x_axis);
-      const std::vector<std::string> y_labels = tick_labels(y_axis);
+      const Scale x_axis =
+        panel.log_x ? make_log_scale(x_min, x_max) : make_linear_scale(x_min, x_max);
+      const Scale y_axis =
+        panel.log_y ? make_log_scale(y_min, y_max) : make_linear_scale(y_min, y_max);
+      const std::vector<std::string> &x_labels = x_axis.labels;
+      const std::vector<std::string> &y_labels = y_axis.labels;
 
       // Layout: title row on top, tick labels and x label below, tick labels and the
       // vertical y label on the left.
@@ -462,17 +650,18 @@ namespace clothsim::io
         return to_pixel(y, y_axis, box_bottom, box_top);
       };
 
-      // Grid, then data clipped to the inside of the box, then the box itself.
-      for (long long i = x_axis.first; i <= x_axis.last; ++i)
-        {
-          const int x = px(static_cast<double>(i) * x_axis.step);
-          image.fill(x, box_top, x, box_bottom, grid_grey);
-        }
-      for (long long i = y_axis.first; i <= y_axis.last; ++i)
-        {
-          const int y = py(static_cast<double>(i) * y_axis.step);
-          image.fill(box_left, y, box_right, y, grid_grey);
-        }
+      // Grid (minor lines first, if not too dense), then data clipped to the inside of
+      // the box, then the box itself.
+      if (minor_grid_fits(x_axis, box_right - box_left))
+        for (const double c : x_axis.minor)
+          image.fill(px(c), box_top, px(c), box_bottom, minor_grey);
+      if (minor_grid_fits(y_axis, box_bottom - box_top))
+        for (const double c : y_axis.minor)
+          image.fill(box_left, py(c), box_right, py(c), minor_grey);
+      for (const double c : x_axis.major)
+        image.fill(px(c), box_top, px(c), box_bottom, grid_grey);
+      for (const double c : y_axis.major)
+        image.fill(box_left, py(c), box_right, py(c), grid_grey);
       image.clip(box_left + 1, box_top + 1, box_right - 1, box_bottom - 1);
       for (const PlotSeries &s : panel.series)
         {
@@ -480,21 +669,28 @@ namespace clothsim::io
           bool connected = false;
           for (std::size_t i = 0; i < s.x.size(); ++i)
             {
-              if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i]))
+              if (!drawn(s.x[i], s.y[i]))
                 {
                   connected = false;
                   continue;
                 }
-              const int x = px(s.x[i]), y = py(s.y[i]);
-              if (connected)
+              const int x = px(x_coordinate(s.x[i])), y = py(y_coordinate(s.y[i]));
+              if (s.line && connected)
                 draw_line(
                   image, x_prev, y_prev, x, y, s.color, s.dashed ? &dash : nullptr);
-              else
+              else if (!s.markers)
                 dot(image, x, y, s.color); // visible even if isolated
               x_prev    = x;
               y_prev    = y;
               connected = true;
             }
+          if (s.markers) // on top of the series' own line
+            for (std::size_t i = 0; i < s.x.size(); ++i)
+              if (drawn(s.x[i], s.y[i]))
+                marker(image,
+                       px(x_coordinate(s.x[i])),
+                       py(y_coordinate(s.y[i])),
+                       s.color);
         }
       image.reset_clip();
       image.fill(box_left, box_top, box_right, box_top, black);
@@ -503,23 +699,24 @@ namespace clothsim::io
       image.fill(box_right, box_top, box_right, box_bottom, black);
 
       // Ticks and their labels.
-      for (long long i = x_axis.first; i <= x_axis.last; ++i)
+      for (std::size_t i = 0; i < x_axis.major.size(); ++i)
         {
-          const int          x     = px(static_cast<double>(i) * x_axis.step);
-          const std::string &label = x_labels[i - x_axis.first];
+          const int          x     = px(x_axis.major[i]);
+          const std::string &label = x_labels[i];
           image.fill(x, box_bottom + 1, x, box_bottom + tick, black);
           draw_text(
             image, label, x - text_width(label) / 2, box_bottom + tick + 4, black);
         }
-      for (long long i = y_axis.first; i <= y_axis.last; ++i)
+      for (std::size_t i = 0; i < y_axis.major.size(); ++i)
         {
-          const int          y     = py(static_cast<double>(i) * y_axis.step);
-          const std::string &label = y_labels[i - y_axis.first];
+          const int          y     = py(y_axis.major[i]);
+          const std::string &label = y_labels[i];
           image.fill(box_left - tick, y, box_left - 1, y, black);
           draw_text(image, label, box_left - tick - 4 - text_width(label), y - 3, black);
         }
 
-      // Legend in the top-right corner of the box: a short line and the label per series.
+      // Legend in the top-right corner of the box: per series a short line (if drawn as
+      // a line), a marker in its middle (if drawn with markers) and the label.
       int n_entries = 0, legend_text_width = 0;
       for (const PlotSeries &s : panel.series)
         if (!s.label.empty())
@@ -543,13 +740,18 @@ namespace clothsim::io
               {
                 const int y    = upper + 9 + 12 * row++;
                 int       dash = 0;
-                draw_line(image,
-                          left + 8,
-                          y - 1,
-                          left + 8 + 24,
-                          y - 1,
-                          s.color,
-                          s.dashed ? &dash : nullptr);
+                if (s.line)
+                  draw_line(image,
+                            left + 8,
+                            y - 1,
+                            left + 8 + 24,
+                            y - 1,
+                            s.color,
+                            s.dashed ? &dash : nullptr);
+                if (s.markers)
+                  marker(image, left + 8 + 12, y - 1, s.color);
+                else if (!s.line)
+                  dot(image, left + 8 + 12, y - 1, s.color);
                 draw_text(image, s.label, left + 8 + 24 + 6, y - 3, black);
               }
         }

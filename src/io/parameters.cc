@@ -566,6 +566,17 @@ namespace clothsim
                       "0.1",
                       Patterns::Double(1e-12, 1e6),
                       "Largest step in s that adaptive stepping may take.");
+    prm.declare_entry(
+      "Accuracy target",
+      "0",
+      Patterns::Double(0., 1e3),
+      "0: off. Otherwise the error in m the run may accumulate by the end: it "
+      "turns on 'Adaptive time steps' with the tolerance of each step set to "
+      "target x dt / 'End time' (error per unit step), so that the accepted "
+      "local error estimates add up to at most the target; 'Error tolerance' and "
+      "'Relative error tolerance' are then not used, and Newton stops at a tenth "
+      "of each step's tolerance. The run reports that sum, its estimated error, "
+      "at the end. Implicit dynamic integrators with a converging Newton method.");
     prm.declare_entry("Initial displacement",
                       "0; 0; 0",
                       Patterns::List(Patterns::Anything(), 3, 3, ";"),
@@ -608,8 +619,11 @@ namespace clothsim
     error_tolerance          = prm.get_double("Error tolerance");
     relative_error_tolerance = prm.get_double("Relative error tolerance");
     maximum_time_step        = prm.get_double("Maximum time step");
-    initial_displacement     = prm.get("Initial displacement");
-    initial_velocity         = prm.get("Initial velocity");
+    accuracy_target          = prm.get_double("Accuracy target");
+    if (accuracy_target > 0.)
+      adaptive_time_steps = true;
+    initial_displacement = prm.get("Initial displacement");
+    initial_velocity     = prm.get("Initial velocity");
     prm.leave_subsection();
   }
 
@@ -1036,6 +1050,19 @@ namespace clothsim
       throw InputError(file,
                        "Material/Mass",
                        "the mass-spring model has lumped masses only; set 'lumped'");
+    if (parameters.time.accuracy_target > 0. &&
+        (parameters.time.integrator == Integrator::static_load_steps ||
+         is_explicit(parameters.time.integrator)))
+      throw InputError(file,
+                       "Time/Accuracy target",
+                       "an accuracy target needs an implicit dynamic integrator "
+                       "(backward euler, bdf2, implicit midpoint)");
+    if (parameters.time.accuracy_target > 0. &&
+        parameters.nonlinear_solver.method == NewtonMethod::single_step)
+      throw InputError(file,
+                       "Time/Accuracy target",
+                       "an accuracy target needs a Newton method that solves each step "
+                       "('single step' leaves it unsolved)");
     if (parameters.time.adaptive_time_steps &&
         (parameters.time.integrator == Integrator::static_load_steps ||
          is_explicit(parameters.time.integrator)))
@@ -1043,7 +1070,8 @@ namespace clothsim
                        "Time/Adaptive time steps",
                        "adaptive time steps are for the implicit dynamic integrators "
                        "(backward euler, bdf2, implicit midpoint)");
-    if (parameters.time.adaptive_time_steps && parameters.time.error_tolerance == 0. &&
+    if (parameters.time.adaptive_time_steps && parameters.time.accuracy_target == 0. &&
+        parameters.time.error_tolerance == 0. &&
         parameters.time.relative_error_tolerance == 0.)
       throw InputError(file,
                        "Time/Error tolerance",

@@ -156,6 +156,9 @@ namespace clothsim
     double error_tolerance;          // m
     double relative_error_tolerance; // of the largest displacement
     double maximum_time_step;        // s
+    // m; > 0: adaptive steps whose accepted local error estimates add up to at most
+    // this over the run (error per unit step: each step's tolerance is target dt / T)
+    double accuracy_target;
     // Initial state: FunctionParser expressions 'ux; uy; uz' in x, y, z (m, m/s).
     std::string initial_displacement;
     std::string initial_velocity;

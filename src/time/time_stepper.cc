@@ -189,10 +189,9 @@ namespace clothsim
     tangent_weights = {terms.inertia_weight, terms.damping_weight};
     // With adaptive steps Newton stops once its updates are a tenth of the time-error
     // tolerance: solving further would be below the truncation error.
-    const double newton_floor = dynamic && parameters.time.adaptive_time_steps
-                                  ? 0.1 * parameters.time.error_tolerance
-                                  : 0.;
-    NewtonResult result       = newton.solve(problem, u_new, newton_floor);
+    const double newton_floor =
+      dynamic && parameters.time.adaptive_time_steps ? 0.1 * step_tolerance(dt, 0.) : 0.;
+    NewtonResult result = newton.solve(problem, u_new, newton_floor);
     if (!result.converged)
       return result;
 
@@ -222,6 +221,16 @@ namespace clothsim
                     : "a triangle collapsed (area ratio " + std::to_string(area) + ")";
       }
     return result;
+  }
+
+
+  double
+  TimeStepper::step_tolerance(const double dt, const double largest_displacement) const
+  {
+    const TimeParameters &time = parameters.time;
+    if (time.accuracy_target > 0.)
+      return time.accuracy_target * dt / time.end_time;
+    return time.error_tolerance + time.relative_error_tolerance * largest_displacement;
   }
 
 
@@ -356,8 +365,7 @@ namespace clothsim
                 if (adaptive)
                   {
                     const double tolerance =
-                      parameters.time.error_tolerance +
-                      parameters.time.relative_error_tolerance * u_new.linfty_norm();
+                      step_tolerance(time_new - time, u_new.linfty_norm());
                     const double factor =
                       error > 0.
                         ? std::clamp(0.9 * std::pow(tolerance / error, 1. / (order + 1.)),
@@ -432,6 +440,7 @@ namespace clothsim
                                      spent.first,
                                      spent.second});
             rejected = 0;
+            summary.estimated_error += estimate;
             if (adaptive)
               {
                 // The controller's step replaces any Newton halvings of this one.

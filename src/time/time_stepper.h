@@ -60,6 +60,7 @@ namespace clothsim
     unsigned int retries           = 0;
     unsigned int rejected          = 0; // steps rejected by the error control
     unsigned int tangents          = 0; // tangents assembled
+    double estimated_error = 0.; // m: the accepted steps' local error estimates, summed
   };
 
   class TimeStepper
@@ -97,6 +98,12 @@ namespace clothsim
     // the midpoint rule, error dt³/12 u⁽³⁾, and 8/7 for BDF2, error 2/9 dt³ u⁽³⁾).
     std::pair<double, unsigned int>
     error_estimate(const double dt) const;
+
+    // The local error a step of size dt may make (m): 'Error tolerance' + 'Relative
+    // error tolerance' x the largest displacement, or with an accuracy target T_a the
+    // share T_a dt / 'End time' of it.
+    double
+    step_tolerance(const double dt, const double largest_displacement) const;
 
     // Solves one step of size dt from state n; returns the Newton result, leaves u_new.
     NewtonResult

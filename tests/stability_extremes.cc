@@ -1,0 +1,479 @@
+// Stability at the extremes (issue 6): short runs of the default hanging sheet
+// (params/default.prm: 1 m² cotton, 2,798 vertices, two pinned top corners, gravity,
+// backward Euler at dt = 1/60 s, Rayleigh damping α = 0.1 1/s, β = 0.001 s), each with
+// one setting pushed to an extreme, 0.25 s unless said otherwise:
+// 1. Stiffness: Young's modulus 1e-2, 1, 1e2, 1e4, 1e6 times the default 0.821 MPa
+//    (backward Euler); the implicit midpoint rule at 1e-2 and 1e6.
+// 2. Damping: none (backward Euler; midpoint rule), very high (α = 100 1/s, β = 1 s). The
+//    default damping is the baseline run of 1 (E x 1).
+// 3. Time steps: 1e-5 s (2e-3 s, 200 steps), 1e-3 s (0.05 s), 0.1 s (0.5 s, 5 steps; also
+//    at E x 1e-2 and E x 1e6). 1/60 s is the baseline.
+// 4. Poisson's ratio 0 and 0.49.
+// 5. Nearly inextensible: E x 1e4 on the mass-spring model, and the membrane at E x 1e4
+//    with ν = 0.49.
+// 6. Poorly shaped triangles: meshes/sliver-sheet.geo (100 x 5 cells, right triangles of
+//    legs 0.01 and 0.2 m, aspect ratio 20; the mesh is generated from a copy of the .geo
+//    in the scratch directory), at the default and at E x 1e-2 (large stretches of the
+//    slivers). Checked first: the largest aspect ratio (longest edge over shortest
+//    altitude) is above 15.
+// 7. Explicit integration beyond its critical step: the mass-spring model with velocity
+//    Verlet at 1.5 x the estimated critical step (0.03 s), and at a fixed 1e-3 s (16 x;
+//    also symplectic Euler, and the membrane with velocity Verlet).
+// Every case must:
+// a. finish, or stop with a SimulationError with a message (printed); any other
+//    exception is a failure. The cases of 7 must stop (the divergence is detected);
+// b. write no NaN or Inf: every field of statistics.csv and probes.csv (but the probe
+//    names) parses as a finite number, also in a run that stopped;
+// c. if it finished: the largest displacement component at the end below 1 m + g T²/2
+//    (free fall over the run plus the sheet's size: a loose bound against garbage);
+// d. implicit integrators (no external work: the pins are fixed, gravity's potential is
+//    in total_energy): the total energy does not grow, neither from its initial value
+//    (max_n E_n - E_0) nor from step to step (max_n E_n+1 - E_n), within
+//    1e-6 S + 1e-15 J, where S = max_n (K + W + |P|) is the run's energy scale. The
+//    energies span eight orders of magnitude across the stiffnesses (S = 3.5e-8 J at
+//    E x 1e6, 0.79 J at E x 1e-2), so the tolerance is relative: an absolute 1e-6 J
+//    would exceed the whole energy of the stiff sheets. The Newton tolerances (residual
+//    1e-9 N absolute, 1e-8 relative, displacement 1e-6 m) leave energy errors of the
+//    order of residual x update, below 1e-12 J; measured: no step gains more than
+//    1e-10 S (E x 1e6: 2.4e-18 J at S = 3.5e-8 J), most lose energy. Backward Euler
+//    dissipates (exactly so for a convex energy; the membrane in compression is not
+//    convex, but no growth was measured). The midpoint rule without damping conserves
+//    quadratic energies only: for the membrane its energy error is O(dt²) and oscillates
+//    without drift (measured on the default sheet over 0.25 s: largest E - E_0 = 5.4e-5,
+//    1.4e-5, 3.6e-6 J at dt = 1/60, 1/120, 1/240 s, the same with Newton tolerances of
+//    1e-12; 7e-4 S at 1/60 s); for that case the bound is |E - E_0| < 5e-3 S. With the
+//    default damping the midpoint runs dissipate and get the strict check.
+// A run's outcome, steps, largest probe displacement and energy growth are printed in a
+// table at the end.
+
+#include "csv.h"
+#include "scene_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <limits>
+
+using namespace clothsim;
+using namespace clothsim::test;
+
+namespace
+{
+  namespace fs = std::filesystem;
+
+  const std::string default_prm =
+    std::string(CLOTHSIM_SOURCE_DIR) + "/params/default.prm";
+  const std::string sliver_geo =
+    std::string(CLOTHSIM_SOURCE_DIR) + "/meshes/sliver-sheet.geo";
+  const fs::path root    = fs::temp_directory_path() / "clothsim-stability";
+  const double   young   = 0.821e6; // Pa, the default
+  const double   gravity = 9.81;    // m/s²
+
+  enum class EnergyCheck
+  {
+    none,        // explicit: no energy claim
+    dissipative, // E_n - E_0 and E_n+1 - E_n below 1e-6 S
+    bounded      // undamped midpoint rule: |E_n - E_0| below 5e-3 S
+  };
+
+  struct Case
+  {
+    std::string              name;     // table label and output directory
+    std::string              settings; // what is extreme
+    std::vector<std::string> overrides;
+    double                   end_time;
+    bool                     must_stop = false;
+    EnergyCheck              energy    = EnergyCheck::dissipative;
+  };
+
+  struct Outcome
+  {
+    bool        finished = false;
+    bool        stopped  = false; // SimulationError
+    std::string message;          // its message, or another exception's
+    int         steps        = -1;
+    double      time_reached = 0.;
+    double      probe_max_u  = 0.; // largest |u| at the probes over the rows written
+    double      final_max_u  = std::numeric_limits<double>::quiet_NaN();
+    double      growth       = 0.; // max_n E_n - E_0, J
+    double      step_growth  = 0.; // max_n E_n+1 - E_n, J (0 without steps)
+    double      deviation    = 0.; // max_n |E_n - E_0|, J
+    double      scale        = 0.; // S = max_n (K + W + |P|), J
+    double      seconds      = 0.;
+    bool        passed       = true;
+  };
+
+  std::string
+  young_times(const double factor)
+  {
+    return "Material/Young's modulus=" + number(factor * young);
+  }
+
+  const std::vector<std::string> no_damping = {"Damping/Mass proportional=0",
+                                               "Damping/Stiffness proportional=0"};
+
+  std::vector<std::string>
+  join(std::vector<std::string> a, const std::vector<std::string> &b)
+  {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  }
+
+  // Checks that every field of `file` (but the columns named in `text_columns`) is a
+  // finite number and every row has the header's number of fields. Returns the number of
+  // bad fields; prints the first.
+  unsigned int
+  count_bad_fields(ConditionalOStream             &pcout,
+                   const std::string              &file,
+                   const std::vector<std::string> &text_columns)
+  {
+    if (!fs::exists(file))
+      {
+        pcout << "  FAIL  " << file << " was not written" << std::endl;
+        return 1;
+      }
+    const Csv    csv = read_csv(file);
+    unsigned int bad = 0;
+    for (unsigned int r = 0; r < csv.rows.size(); ++r)
+      {
+        const auto &row = csv.rows[r];
+        if (row.size() != csv.header.size())
+          {
+            if (bad++ == 0)
+              pcout << "  FAIL  " << file << ": row " << r + 1 << " has " << row.size()
+                    << " fields, the header " << csv.header.size() << std::endl;
+            continue;
+          }
+        for (unsigned int c = 0; c < row.size(); ++c)
+          {
+            if (std::find(text_columns.begin(), text_columns.end(), csv.header[c]) !=
+                text_columns.end())
+              continue;
+            const char  *begin = row[c].c_str();
+            char        *end   = nullptr;
+            const double value = std::strtod(begin, &end);
+            if (row[c].empty() || *end != '\0' || !std::isfinite(value))
+              if (bad++ == 0)
+                pcout << "  FAIL  " << file << ": row " << r + 1 << ", " << csv.header[c]
+                      << " = '" << row[c] << "' is not a finite number" << std::endl;
+          }
+      }
+    return bad;
+  }
+
+  // Steps, time, energy growth and the probes' largest displacement from the files a run
+  // wrote (also when it stopped).
+  void
+  read_results(const fs::path &directory, Outcome &outcome)
+  {
+    const Csv statistics = read_csv(directory / "statistics.csv");
+    if (statistics.rows.empty())
+      return;
+    const unsigned int last = statistics.rows.size() - 1;
+    outcome.steps           = std::lround(statistics.number(last, "step"));
+    outcome.time_reached    = statistics.number(last, "time");
+    const double initial    = statistics.number(0, "total_energy");
+    double       previous   = initial;
+    outcome.step_growth     = last > 0 ? -std::numeric_limits<double>::max() : 0.;
+    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+      {
+        const double total = statistics.number(r, "total_energy");
+        outcome.growth     = std::max(outcome.growth, total - initial);
+        outcome.deviation  = std::max(outcome.deviation, std::abs(total - initial));
+        if (r > 0)
+          outcome.step_growth = std::max(outcome.step_growth, total - previous);
+        previous      = total;
+        outcome.scale = std::max(outcome.scale,
+                                 statistics.number(r, "kinetic_energy") +
+                                   statistics.number(r, "elastic_energy") +
+                                   std::abs(statistics.number(r, "potential_energy")));
+      }
+    const Csv probes = read_csv(directory / "probes.csv");
+    for (unsigned int r = 0; r < probes.rows.size(); ++r)
+      {
+        const double ux = probes.number(r, "ux"), uy = probes.number(r, "uy"),
+                     uz = probes.number(r, "uz");
+        outcome.probe_max_u =
+          std::max(outcome.probe_max_u, std::sqrt(ux * ux + uy * uy + uz * uz));
+      }
+  }
+
+  Outcome
+  run_case(ConditionalOStream &pcout, const Case &c)
+  {
+    pcout << c.name << " (" << c.settings << ")" << std::endl;
+    const fs::path directory = root / c.name;
+    fs::remove_all(directory);
+    std::vector<std::string> overrides = {"Time/End time=" + number(c.end_time),
+                                          "Output/Progress=off"};
+    overrides.insert(overrides.end(), c.overrides.begin(), c.overrides.end());
+
+    Outcome    outcome;
+    const auto start = std::chrono::steady_clock::now();
+    try
+      {
+        const SceneRun run =
+          run_scene(default_prm, overrides, directory.string(), MPI_COMM_WORLD);
+        outcome.finished    = true;
+        outcome.final_max_u = run.displacement.linfty_norm();
+      }
+    catch (const SimulationError &error)
+      {
+        outcome.stopped = true;
+        outcome.message = error.what();
+      }
+    catch (const std::exception &error)
+      {
+        outcome.message =
+          std::string("exception other than SimulationError: ") + error.what();
+      }
+    catch (...)
+      {
+        outcome.message = "unknown exception";
+      }
+    outcome.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!outcome.message.empty())
+      pcout << "  " << (outcome.stopped ? "stopped: " : "") << outcome.message
+            << std::endl;
+
+    bool &passed = outcome.passed;
+    // a. finished or stopped cleanly; the explicit cases beyond the limit stopped.
+    const bool clean = outcome.finished || (outcome.stopped && !outcome.message.empty());
+    pcout << (clean ? "  ok    " : "  FAIL  ") << "outcome: "
+          << (outcome.finished  ? "finished"
+              : outcome.stopped ? "stopped with a SimulationError"
+                                : "crashed out of the run")
+          << std::endl;
+    passed &= clean;
+    if (c.must_stop)
+      {
+        pcout << (outcome.stopped ? "  ok    " : "  FAIL  ")
+              << "the divergence is detected (SimulationError)" << std::endl;
+        passed &= outcome.stopped;
+      }
+
+    // b. nothing non-finite written.
+    const unsigned int bad =
+      count_bad_fields(pcout, (directory / "statistics.csv").string(), {}) +
+      count_bad_fields(pcout, (directory / "probes.csv").string(), {"probe"});
+    passed &= check_below(pcout, "non-finite or malformed fields written", bad, 0.5);
+    if (bad > 0 || !fs::exists(directory / "statistics.csv") ||
+        !fs::exists(directory / "probes.csv"))
+      return outcome;
+    read_results(directory, outcome);
+
+    // c. a plausible final state.
+    if (outcome.finished)
+      passed &= check_below(pcout,
+                            "largest displacement component at the end, m",
+                            outcome.final_max_u,
+                            1. + 0.5 * gravity * c.end_time * c.end_time);
+
+    // d. energy.
+    if (c.energy == EnergyCheck::dissipative)
+      {
+        const double tolerance = 1e-6 * outcome.scale + 1e-15;
+        passed &=
+          check_below(pcout, "energy growth max E_n - E_0, J", outcome.growth, tolerance);
+        passed &= check_below(pcout,
+                              "energy growth per step max E_n+1 - E_n, J",
+                              outcome.step_growth,
+                              tolerance);
+      }
+    else if (c.energy == EnergyCheck::bounded)
+      passed &= check_below(pcout,
+                            "energy error max |E_n - E_0|, J",
+                            outcome.deviation,
+                            5e-3 * outcome.scale + 1e-15);
+    return outcome;
+  }
+
+  // Largest aspect ratio (longest edge over shortest altitude, L_max² / 2A) over the
+  // triangles of a scene's mesh.
+  double
+  largest_aspect_ratio(const std::vector<std::string> &overrides)
+  {
+    const auto loaded  = load_scene(default_prm, overrides, MPI_COMM_WORLD);
+    double     largest = 0.;
+    for (const auto &cell : loaded->model->get_dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          double longest = 0.;
+          for (unsigned int v = 0; v < 3; ++v)
+            longest =
+              std::max(longest, cell->vertex(v).distance(cell->vertex((v + 1) % 3)));
+          largest = std::max(largest, longest * longest / (2. * cell->measure()));
+        }
+    return Utilities::MPI::max(largest, MPI_COMM_WORLD);
+  }
+
+  std::string
+  scientific(const double value, const int digits = 2)
+  {
+    std::ostringstream out;
+    out << std::scientific << std::setprecision(digits) << value;
+    return out.str();
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const MPI_Comm                   communicator = MPI_COMM_WORLD;
+  ConditionalOStream               pcout(std::cout,
+                           Utilities::MPI::this_mpi_process(communicator) == 0);
+  bool                             passed = true;
+
+  // 6. The sliver mesh, generated from a copy of the .geo in the scratch directory (a
+  //    fresh .msh every run, none in the source tree).
+  const fs::path sliver_directory = root / "sliver-mesh";
+  fs::remove_all(sliver_directory);
+  fs::create_directories(sliver_directory);
+  fs::copy_file(sliver_geo, sliver_directory / "sliver-sheet.geo");
+  const std::string sliver_mesh =
+    "Mesh/Mesh file=" + (sliver_directory / "sliver-sheet.msh").string();
+  pcout << "mesh quality" << std::endl;
+  pcout << "  sheet.msh: largest aspect ratio " << largest_aspect_ratio({}) << std::endl;
+  passed &= check_above(pcout,
+                        "sliver-sheet.msh: largest aspect ratio",
+                        largest_aspect_ratio({sliver_mesh}),
+                        15.);
+
+  // 7. The mass-spring model's critical step under velocity Verlet (as in
+  //    explicit_integrators.cc).
+  const std::vector<std::string> verlet_springs = {"Model=mass-spring",
+                                                   "Time/Integrator=velocity verlet"};
+  double                         critical_step  = 0.;
+  {
+    const auto loaded = load_scene(default_prm, verlet_springs, communicator);
+    VectorType u;
+    loaded->model->initialize_ghosted(u);
+    critical_step =
+      estimate_critical_step(*loaded->model, loaded->parameters(), u).estimate;
+    pcout << "  mass-spring, velocity Verlet: estimated critical step " << critical_step
+          << " s" << std::endl;
+  }
+
+  const std::string midpoint = "Time/Integrator=implicit midpoint";
+  const double      base_end = 0.25;
+  std::vector<Case> cases    = {
+       // 1. Stiffness.
+    {"E x 1e-2", "E = 8.21e3 Pa, backward Euler", {young_times(1e-2)}, base_end},
+    {"baseline", "defaults: E = 0.821 MPa, dt = 1/60 s", {}, base_end},
+    {"E x 1e2", "E = 8.21e7 Pa", {young_times(1e2)}, base_end},
+    {"E x 1e4", "E = 8.21e9 Pa", {young_times(1e4)}, base_end},
+    {"E x 1e6", "E = 8.21e11 Pa", {young_times(1e6)}, base_end},
+    {"midpoint E x 1e-2", "implicit midpoint", {midpoint, young_times(1e-2)}, base_end},
+    {"midpoint E x 1e6", "implicit midpoint", {midpoint, young_times(1e6)}, base_end},
+    // 2. Damping.
+    {"no damping", "alpha = beta = 0, backward Euler", no_damping, base_end},
+    {"midpoint no damping",
+        "alpha = beta = 0, implicit midpoint",
+        join({midpoint}, no_damping),
+        base_end,
+        false,
+        EnergyCheck::bounded},
+    {"high damping",
+        "alpha = 100 1/s, beta = 1 s",
+        {"Damping/Mass proportional=100", "Damping/Stiffness proportional=1"},
+        base_end},
+    // 3. Time steps.
+    {"dt 1e-5", "dt = 1e-5 s, 200 steps", {"Time/Time step=1e-5"}, 2e-3},
+    {"dt 1e-3", "dt = 1e-3 s, 50 steps", {"Time/Time step=1e-3"}, 0.05},
+    {"dt 0.1", "dt = 0.1 s, 5 steps", {"Time/Time step=0.1"}, 0.5},
+    {"dt 0.1 E x 1e-2", "dt = 0.1 s", {"Time/Time step=0.1", young_times(1e-2)}, 0.5},
+    {"dt 0.1 E x 1e6", "dt = 0.1 s", {"Time/Time step=0.1", young_times(1e6)}, 0.5},
+    // 4. Poisson's ratio.
+    {"nu 0", "Poisson ratio 0", {"Material/Poisson ratio=0"}, base_end},
+    {"nu 0.49", "Poisson ratio 0.49", {"Material/Poisson ratio=0.49"}, base_end},
+    // 5. Nearly inextensible.
+    {"springs E x 1e4",
+        "mass-spring, E = 8.21e9 Pa",
+        {"Model=mass-spring", young_times(1e4)},
+        base_end},
+    {"nu 0.49 E x 1e4",
+        "membrane, E = 8.21e9 Pa, nu = 0.49",
+        {"Material/Poisson ratio=0.49", young_times(1e4)},
+        base_end},
+    // 6. Slivers.
+    {"slivers", "sliver-sheet.msh (aspect 20)", {sliver_mesh}, base_end},
+    {"slivers E x 1e-2",
+        "sliver-sheet.msh, E = 8.21e3 Pa",
+        {sliver_mesh, young_times(1e-2)},
+        base_end},
+    // 7. Explicit beyond the critical step.
+    {"verlet 1.5 dt_crit",
+        "mass-spring, velocity Verlet, dt = " + scientific(1.5 * critical_step) + " s",
+        join(verlet_springs, {"Time/Time step=" + number(1.5 * critical_step)}),
+        0.03,
+        true,
+        EnergyCheck::none},
+    {"verlet 1e-3",
+        "mass-spring, velocity Verlet, dt = 1e-3 s",
+        join(verlet_springs, {"Time/Time step=1e-3"}),
+        0.05,
+        true,
+        EnergyCheck::none},
+    {"symplectic 1e-3",
+        "mass-spring, symplectic Euler, dt = 1e-3 s",
+        {"Model=mass-spring", "Time/Integrator=symplectic euler", "Time/Time step=1e-3"},
+        0.05,
+        true,
+        EnergyCheck::none},
+    {"membrane verlet 1e-3",
+        "fem, velocity Verlet, dt = 1e-3 s",
+        {"Time/Integrator=velocity verlet", "Time/Time step=1e-3"},
+        0.05,
+        true,
+        EnergyCheck::none}};
+
+  std::vector<Outcome> outcomes;
+  for (const Case &c : cases)
+    {
+      outcomes.push_back(run_case(pcout, c));
+      passed &= outcomes.back().passed;
+    }
+
+  // The table.
+  pcout << std::endl
+        << std::left << std::setw(22) << "case" << std::setw(46) << "settings"
+        << std::setw(10) << "outcome" << std::right << std::setw(6) << "steps"
+        << std::setw(9) << "t, s" << std::setw(11) << "max|u|, m" << std::setw(11)
+        << "dE_step, J" << std::setw(10) << "S, J" << std::setw(11) << "dE_step/S"
+        << std::setw(7) << "s"
+        << "  check" << std::endl;
+  for (unsigned int i = 0; i < cases.size(); ++i)
+    {
+      const Case    &c = cases[i];
+      const Outcome &o = outcomes[i];
+      pcout << std::left << std::setw(22) << c.name << std::setw(46) << c.settings
+            << std::setw(10)
+            << (o.finished  ? "finished"
+                : o.stopped ? "stopped"
+                            : "CRASHED")
+            << std::right << std::setw(6) << o.steps << std::setw(9)
+            << std::setprecision(4) << o.time_reached << std::setw(11)
+            << scientific(o.probe_max_u) << std::setw(11)
+            << (c.energy == EnergyCheck::none ? "-" : scientific(o.step_growth))
+            << std::setw(10) << scientific(o.scale) << std::setw(11)
+            << (c.energy == EnergyCheck::none || o.scale == 0.
+                  ? "-"
+                  : scientific(o.step_growth / o.scale))
+            << std::setw(7) << std::fixed << std::setprecision(1) << o.seconds
+            << std::defaultfloat << "  " << (o.passed ? "ok" : "FAIL") << std::endl;
+      if (!o.finished)
+        pcout << "    " << o.message << std::endl;
+    }
+  pcout << "(steps, t: the last step written; max|u|: largest displacement at the "
+           "probes over the rows written (the explicit runs stop before their first "
+           "output time, 1/30 s, so only t = 0 is there); dE_step: "
+           "largest energy gain of a step, negative if every step lost energy; S: the "
+           "run's energy scale max (K + W + |P|))"
+        << std::endl;
+
+  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
+  return passed ? 0 : 1;
+}
