@@ -9,6 +9,7 @@
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -842,6 +843,19 @@ namespace clothsim
       "the nearest mesh vertex; probes.csv records its reference position and "
       "displacement.");
     prm.declare_entry(
+      "Probe references",
+      "",
+      Patterns::Map(Patterns::Anything(),
+                    Patterns::List(Patterns::Double(), 3, 3, ","),
+                    0,
+                    1000,
+                    ";",
+                    ":"),
+      "Closed-form displacements 'probe: ux, uy, uz; ...' (m) of named probes at "
+      "the end of the run (static mode: at full load), e.g. an elastica's tip. "
+      "Convergence studies (clothsim --convergence) measure the probes' errors "
+      "against them; runs ignore them.");
+    prm.declare_entry(
       "Progress",
       "auto",
       Patterns::Selection("auto|on|off"),
@@ -861,7 +875,24 @@ namespace clothsim
         const auto name_value = Utilities::split_string_list(item, ':');
         const auto xyz =
           Utilities::string_to_double(Utilities::split_string_list(name_value[1], ','));
-        probes.push_back({name_value[0], Point<3>(xyz[0], xyz[1], xyz[2])});
+        probes.push_back({name_value[0], Point<3>(xyz[0], xyz[1], xyz[2]), false, {}});
+      }
+    for (const std::string &item :
+         Utilities::split_string_list(prm.get("Probe references"), ';'))
+      {
+        const auto name_value = Utilities::split_string_list(item, ':');
+        const auto u =
+          Utilities::string_to_double(Utilities::split_string_list(name_value[1], ','));
+        const auto probe =
+          std::find_if(probes.begin(), probes.end(), [&](const Probe &candidate) {
+            return candidate.name == name_value[0];
+          });
+        if (probe == probes.end())
+          throw InputError("",
+                           "Output/Probe references",
+                           "no probe named '" + name_value[0] + "' in 'Output/Probes'");
+        probe->has_reference          = true;
+        probe->reference_displacement = Tensor<1, 3>({u[0], u[1], u[2]});
       }
     progress = prm.get("Progress");
     prm.leave_subsection();

@@ -220,6 +220,10 @@ namespace clothsim
   {
     std::string name;
     Point<3>    reference_point; // m
+    // A closed-form displacement at the end of the run (m), if the scene names one
+    // ('Probe references'): convergence studies measure errors against it.
+    bool         has_reference = false;
+    Tensor<1, 3> reference_displacement;
   };
 
   struct OutputParameters
