@@ -5,6 +5,7 @@
 #include <deal.II/base/timer.h>
 
 #include "app/command_line.h"
+#include "app/convergence_study.h"
 #include "app/model_comparison.h"
 #include "app/scene_runner.h"
 #include "io/input_error.h"
@@ -145,6 +146,20 @@ namespace clothsim
                                    : command_line.parameter_file;
         if (command_line.action == CommandLine::Action::compare)
           return run_comparison(command_line, file, communicator, pcout);
+        if (command_line.action == CommandLine::Action::convergence)
+          {
+            std::string directory = command_line.output_directory;
+            if (directory.empty())
+              {
+                ParameterHandler prm;
+                directory =
+                  output_directory(command_line,
+                                   read_parameters(prm, file, command_line.overrides)) +
+                  "-convergence";
+              }
+            return run_convergence_study(
+              command_line, file, directory, communicator, pcout);
+          }
 
         // All input is read and checked before anything is written.
         std::unique_ptr<Scene> scene =

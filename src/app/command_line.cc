@@ -22,6 +22,30 @@ namespace clothsim
           command_line.action = CommandLine::Action::print_parameters;
         else if (argument == "--compare")
           command_line.action = CommandLine::Action::compare;
+        else if (argument == "--convergence")
+          command_line.action = CommandLine::Action::convergence;
+        else if (argument == "--sweep")
+          command_line.action = CommandLine::Action::sweep;
+        else if (argument == "--space" || argument == "--time")
+          {
+            const std::string text   = value();
+            std::size_t       used   = 0;
+            int               levels = -1;
+            try
+              {
+                levels = std::stoi(text, &used);
+              }
+            catch (const std::exception &)
+              {}
+            if (used != text.size() || levels < 0 || levels > 8)
+              throw InputError("", argument, "expects a whole number 0..8, got " + text);
+            (argument == "--space" ? command_line.space_levels
+                                   : command_line.time_levels) = levels;
+          }
+        else if (argument == "--axis")
+          command_line.sweep_axes.push_back(value());
+        else if (argument == "--reference-set")
+          command_line.reference_overrides.push_back(value());
         else if (argument == "--set")
           command_line.overrides.push_back(value());
         else if (argument == "--fem-set")
@@ -37,6 +61,17 @@ namespace clothsim
         else
           throw InputError("", argument, "only one parameter file may be given");
       }
+    const bool convergence = command_line.action == CommandLine::Action::convergence;
+    if (convergence && command_line.space_levels + command_line.time_levels == 0)
+      throw InputError("",
+                       "--convergence",
+                       "needs --space K and/or --time K (K >= 1 refinements or step "
+                       "halvings)");
+    if (!convergence && command_line.space_levels + command_line.time_levels > 0)
+      throw InputError("", "--space/--time", "only with --convergence");
+    if (command_line.action != CommandLine::Action::sweep &&
+        !(command_line.sweep_axes.empty() && command_line.reference_overrides.empty()))
+      throw InputError("", "--axis/--reference-set", "only with --sweep");
     return command_line;
   }
 
@@ -62,6 +97,28 @@ namespace clothsim
            "      --mass-spring-set \"Time/Integrator=velocity verlet\". Writes\n"
            "      DIR/comparison.csv (probe and whole-mesh position differences over\n"
            "      time), DIR/runtimes.csv and DIR/comparison.png (probe histories).\n"
+           "  clothsim --convergence [PARAMS.prm] [--space K] [--time K] [--set ...]...\n"
+           "           [--output-dir DIR]\n"
+           "      convergence study: the scene at 'Mesh/Global refinements' +0..K\n"
+           "      (--space) and/or at 'Time/Time step' / 1, 2, ..., 2^K (--time), each\n"
+           "      run in DIR/space-N or DIR/time-N (DIR default\n"
+           "      output/<name>-convergence/). Errors at the end of the run: probes\n"
+           "      against their 'Output/Probe references' where given, and probes and\n"
+           "      the whole mesh (on the coarsest run's vertices) against the\n"
+           "      Richardson extrapolation of the three finest runs (the finest run\n"
+           "      with fewer). Prints the table with observed orders; writes\n"
+           "      DIR/convergence.csv and DIR/convergence.png (log-log).\n"
+           "  clothsim --sweep [PARAMS.prm] [--axis \"A=x | A=y & B=z\"]...\n"
+           "           [--reference-set ...]... [--set ...]... [--output-dir DIR]\n"
+           "      speed-accuracy sweep: runs every combination of the axes (each\n"
+           "      alternative one or more assignments joined by '&'; without --axis\n"
+           "      a default grid of model, integrator, step and Newton method) and a\n"
+           "      converged reference (default: implicit midpoint, newton, fem, the\n"
+           "      scene's step / 16, the finest mesh of the grid; --reference-set\n"
+           "      changes it). Error: the largest vertex position difference from the\n"
+           "      reference at the end (m). Writes DIR/pareto.csv and DIR/pareto.png\n"
+           "      (runtime against error, Pareto front marked) and prints the fastest\n"
+           "      setting for each error level.\n"
            "  clothsim --print-parameters\n"
            "      print every parameter with its default, allowed values and unit.\n"
            "  clothsim --help\n"

@@ -5,6 +5,10 @@
 //   clothsim --compare [PARAMS.prm] [--set ...]... [--fem-set ...]... [--mass-spring-set
 //   ...]...
 //            [--output-dir DIR]
+//   clothsim --convergence [PARAMS.prm] [--space K] [--time K] [--set ...]...
+//            [--output-dir DIR]
+//   clothsim --sweep [PARAMS.prm] [--axis "A=1|A=2"]... [--reference-set ...]...
+//            [--set ...]... [--output-dir DIR]
 //   clothsim --print-parameters
 //   clothsim --help
 
@@ -20,7 +24,9 @@ namespace clothsim
       run,
       print_parameters,
       help,
-      compare // the scene with both models side by side
+      compare,     // the scene with both models side by side
+      convergence, // mesh refinement and/or step halving study
+      sweep        // speed-accuracy sweep over a grid of settings
     };
     Action                   action = Action::run;
     std::string              parameter_file;        // empty: params/default.prm
@@ -28,6 +34,13 @@ namespace clothsim
     std::vector<std::string> fem_overrides;         // --fem-set: the fem run of --compare
     std::vector<std::string> mass_spring_overrides; // --mass-spring-set
     std::string              output_directory;      // empty: output/<scene name>
+    unsigned int             space_levels = 0;      // --space K: refinements +0..K
+    unsigned int             time_levels  = 0;      // --time K: dt, dt/2, ..., dt/2^K
+    // --axis "Section/Name=v1 | Section/Name=v2": one axis of the sweep's grid, its
+    // alternatives separated by '|', each one or more assignments joined by '&'.
+    std::vector<std::string> sweep_axes;
+    std::vector<std::string>
+      reference_overrides; // --reference-set: the sweep's reference
   };
 
   // Throws InputError("<command line>", argument, message) on unknown or incomplete

@@ -1,0 +1,128 @@
+#include "app/study_run.h"
+
+#include <deal.II/base/conditional_ostream.h>
+
+#include "app/scene_runner.h"
+#include "scene/scene.h"
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace clothsim
+{
+  namespace
+  {
+    // A vertex's reference position rounded to 1e-9 (m): the same point in two meshes
+    // (a coarse vertex survives refinement) gets the same key.
+    std::array<long long, 3>
+    position_key(const std::array<double, 6> &vertex)
+    {
+      return {{std::llround(vertex[0] * 1e9),
+               std::llround(vertex[1] * 1e9),
+               std::llround(vertex[2] * 1e9)}};
+    }
+  } // namespace
+
+
+  StudyRun
+  run_study_case(const std::string              &file,
+                 const std::vector<std::string> &overrides,
+                 const std::string              &directory,
+                 const MPI_Comm                  communicator)
+  {
+    std::unique_ptr<Scene> scene      = load_scene(file, overrides, communicator);
+    const ClothModel      &model      = *scene->model;
+    const Parameters      &parameters = scene->parameters();
+    StudyRun               run;
+    run.overrides = overrides;
+    run.unknowns  = model.n_dofs();
+    run.time_step = parameters.time.time_step;
+    run.end_time  = parameters.time.integrator == Integrator::static_load_steps
+                      ? 1.
+                      : parameters.time.end_time;
+    run.probes    = parameters.output.probes;
+
+    ConditionalOStream quiet(std::cout, false);
+    const auto         keep_last = [&run, &model](const double, const VectorType &u) {
+      run.vertices = model.vertex_displacements(u);
+    };
+    const RunOutcome outcome =
+      run_loaded_scene(*scene, file, directory, quiet, keep_last);
+    run.completed    = outcome.completed;
+    run.failure      = outcome.failure;
+    run.wall_seconds = outcome.wall_seconds;
+    run.summary      = outcome.summary;
+
+    // Each probe's displacement from its vertex in the final state.
+    for (const ProbeLocation &probe : scene->probes)
+      {
+        Tensor<1, 3> displacement;
+        double       gap = std::numeric_limits<double>::max();
+        for (const auto &vertex : run.vertices)
+          {
+            const double d =
+              Point<3>(vertex[0], vertex[1], vertex[2]).distance(probe.reference_point);
+            if (d < gap)
+              {
+                gap          = d;
+                displacement = Tensor<1, 3>({vertex[3], vertex[4], vertex[5]});
+              }
+          }
+        run.probe_displacements.push_back(displacement);
+        run.probe_vertices.push_back(probe.reference_point);
+      }
+    return run;
+  }
+
+
+  std::vector<std::array<double, 6>>
+  restrict_to(const std::vector<std::array<double, 6>> &b,
+              const std::vector<std::array<double, 6>> &a)
+  {
+    std::map<std::array<long long, 3>, unsigned int> index_of;
+    for (unsigned int i = 0; i < b.size(); ++i)
+      index_of[position_key(b[i])] = i;
+    std::vector<std::array<double, 6>> restricted;
+    for (const auto &vertex : a)
+      {
+        const auto found = index_of.find(position_key(vertex));
+        if (found != index_of.end())
+          restricted.push_back(b[found->second]);
+      }
+    if (restricted.empty())
+      throw std::runtime_error("the two runs share no vertex");
+    return restricted;
+  }
+
+
+  FieldDifference
+  field_difference(const std::vector<std::array<double, 6>> &a,
+                   const std::vector<std::array<double, 6>> &b)
+  {
+    std::map<std::array<long long, 3>, unsigned int> index_of;
+    for (unsigned int i = 0; i < b.size(); ++i)
+      index_of[position_key(b[i])] = i;
+    FieldDifference difference;
+    double          sum_squares = 0.;
+    for (const auto &vertex : a)
+      {
+        const auto found = index_of.find(position_key(vertex));
+        if (found == index_of.end())
+          continue;
+        const auto &other = b[found->second];
+        double      gap2  = 0.;
+        for (unsigned int d = 3; d < 6; ++d)
+          gap2 += (vertex[d] - other[d]) * (vertex[d] - other[d]);
+        sum_squares += gap2;
+        difference.largest = std::max(difference.largest, std::sqrt(gap2));
+        ++difference.common;
+      }
+    if (difference.common == 0)
+      throw std::runtime_error("the two runs share no vertex");
+    difference.rms = std::sqrt(sum_squares / difference.common);
+    return difference;
+  }
+} // namespace clothsim
