@@ -8,6 +8,7 @@
 #include "app/convergence_study.h"
 #include "app/model_comparison.h"
 #include "app/scene_runner.h"
+#include "app/speed_accuracy_sweep.h"
 #include "io/input_error.h"
 #include "io/output_writer.h"
 #include "io/parameters.h"
@@ -146,8 +147,11 @@ namespace clothsim
                                    : command_line.parameter_file;
         if (command_line.action == CommandLine::Action::compare)
           return run_comparison(command_line, file, communicator, pcout);
-        if (command_line.action == CommandLine::Action::convergence)
+        if (command_line.action == CommandLine::Action::convergence ||
+            command_line.action == CommandLine::Action::sweep)
           {
+            const bool convergence =
+              command_line.action == CommandLine::Action::convergence;
             std::string directory = command_line.output_directory;
             if (directory.empty())
               {
@@ -155,9 +159,12 @@ namespace clothsim
                 directory =
                   output_directory(command_line,
                                    read_parameters(prm, file, command_line.overrides)) +
-                  "-convergence";
+                  (convergence ? "-convergence" : "-sweep");
               }
-            return run_convergence_study(
+            if (convergence)
+              return run_convergence_study(
+                command_line, file, directory, communicator, pcout);
+            return run_speed_accuracy_sweep(
               command_line, file, directory, communicator, pcout);
           }
 
