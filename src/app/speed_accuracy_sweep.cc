@@ -228,7 +228,8 @@ namespace clothsim
               "Time/Integrator=backward euler | Time/Integrator=bdf2 | "
               "Time/Integrator=implicit midpoint",
               "Time/Time step=" + number(2. * scene_step) + " | Time/Time step=" +
-                number(scene_step) + " | Time/Time step=" + number(0.5 * scene_step),
+                number(scene_step) + " | Time/Time step=" + number(0.5 * scene_step) +
+                " | Time/Accuracy target=0.001",
               "Nonlinear solver/Method=newton | Nonlinear solver/Method=modified "
               "newton | Nonlinear solver/Method=single step"};
     const auto grid = sweep_settings(axes);
