@@ -20,14 +20,6 @@ namespace clothsim
   {
     using Vertices = std::vector<std::array<double, 6>>;
 
-    std::string
-    number(const double value)
-    {
-      std::ostringstream out;
-      out << std::setprecision(17) << value;
-      return out.str();
-    }
-
     // One error column of a study: a quantity and what it is measured against.
     struct Quantity
     {
@@ -301,7 +293,7 @@ namespace clothsim
             const std::string level_setting =
               name == "space"
                 ? "Mesh/Global refinements=" + std::to_string(base_level + i)
-                : "Time/Time step=" + number(size);
+                : "Time/Time step=" + parameter_value(size);
             overrides.push_back(level_setting);
             const std::string run_directory =
               directory + "/" + name + "-" + std::to_string(i);

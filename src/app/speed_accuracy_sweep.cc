@@ -20,14 +20,6 @@ namespace clothsim
   namespace
   {
     std::string
-    number(const double value)
-    {
-      std::ostringstream out;
-      out << std::setprecision(17) << value;
-      return out.str();
-    }
-
-    std::string
     joined(const std::vector<std::string> &assignments)
     {
       std::string text;
@@ -227,8 +219,9 @@ namespace clothsim
       axes = {"Model=fem | Model=mass-spring",
               "Time/Integrator=backward euler | Time/Integrator=bdf2 | "
               "Time/Integrator=implicit midpoint",
-              "Time/Time step=" + number(2. * scene_step) + " | Time/Time step=" +
-                number(scene_step) + " | Time/Time step=" + number(0.5 * scene_step) +
+              "Time/Time step=" + parameter_value(2. * scene_step) +
+                " | Time/Time step=" + parameter_value(scene_step) +
+                " | Time/Time step=" + parameter_value(0.5 * scene_step) +
                 " | Time/Accuracy target=0.001",
               "Nonlinear solver/Method=newton | Nonlinear solver/Method=modified "
               "newton | Nonlinear solver/Method=single step"};
@@ -252,7 +245,7 @@ namespace clothsim
                          "Nonlinear solver/Method=newton",
                          "Time/Adaptive time steps=false",
                          "Time/Accuracy target=0",
-                         "Time/Time step=" + number(smallest_step / 8.),
+                         "Time/Time step=" + parameter_value(smallest_step / 8.),
                          "Mesh/Global refinements=" + std::to_string(finest_level)};
     reference.setting.insert(reference.setting.end(),
                              command_line.reference_overrides.begin(),

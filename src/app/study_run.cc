@@ -6,9 +6,11 @@
 #include "scene/scene.h"
 
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 namespace clothsim
@@ -25,6 +27,15 @@ namespace clothsim
                std::llround(vertex[2] * 1e9)}};
     }
   } // namespace
+
+
+  std::string
+  parameter_value(const double value)
+  {
+    std::ostringstream out;
+    out << std::setprecision(17) << value;
+    return out.str();
+  }
 
 
   StudyRun

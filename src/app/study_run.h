@@ -47,6 +47,10 @@ namespace clothsim
                  const std::string              &directory,
                  const MPI_Comm                  communicator);
 
+  // A value for a parameter assignment that reads back as the same double.
+  std::string
+  parameter_value(const double value);
+
   // Position differences |u_a - u_b| over the vertices both runs have, m.
   struct FieldDifference
   {
