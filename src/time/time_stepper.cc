@@ -211,14 +211,19 @@ namespace clothsim
             v_new *= gamma / dt;
           }
       }
-    u_ghosted         = u_new;
-    const double area = model.area_ratio_range(u_ghosted).first;
-    if (!(area > 1e-6))
+    // A collapsed or hundredfold grown triangle is no cloth state (the explicit stepper's
+    // divergence test too): the step is cut like a failed Newton solve. A single
+    // linearised step of a stiff, fast-rotating sheet can stretch it that far.
+    u_ghosted                      = u_new;
+    const auto [smallest, largest] = model.area_ratio_range(u_ghosted);
+    if (!(smallest > 1e-6) || !(largest < 100.))
       {
         result.converged = false;
         result.failure =
-          area < 0. ? "NaN in the solution"
-                    : "a triangle collapsed (area ratio " + std::to_string(area) + ")";
+          smallest < 0. ? "NaN in the solution"
+          : !(smallest > 1e-6)
+            ? "a triangle collapsed (area ratio " + std::to_string(smallest) + ")"
+            : "a triangle grew " + std::to_string(largest) + " times its area";
       }
     return result;
   }
