@@ -10,9 +10,9 @@
 // time loop (s), all measured in this one process, so the ratios hold. A run is on the
 // Pareto front if no run is at least as fast and at least as accurate with one of the
 // two strictly. Without --axis the grid is model (fem, mass-spring) x integrator
-// (backward euler, bdf2, implicit midpoint) x step (2 dt, dt, dt/2 of the scene, or
-// adaptive with an accuracy target of 1 mm) x Newton method (newton, modified newton,
-// single step; the accuracy target refuses the single step: 'invalid input').
+// (backward euler, bdf2, implicit midpoint) x step (2 dt, dt, dt/2 of the scene) x
+// Newton method (newton, modified newton, single step), plus the implicit midpoint rule
+// with an accuracy target of 1 mm for each model with newton and modified newton.
 // Writes into the sweep's directory: run-NNN/ and reference/ (each run's output),
 // pareto.csv (setting,runtime_seconds,error,rms_error,steps,newton_iterations,status,
 // on_front; status: completed, failed, invalid input) and pareto.png (runtime against
