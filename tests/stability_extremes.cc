@@ -43,6 +43,7 @@
 //    1.4e-5, 3.6e-6 J at dt = 1/60, 1/120, 1/240 s, the same with Newton tolerances of
 //    1e-12; 7e-4 S at 1/60 s); for that case the bound is |E - E_0| < 5e-3 S. With the
 //    default damping the midpoint runs dissipate and get the strict check.
+// e. the cases of 7: no kinetic or elastic energy above 1e9 J written before the stop.
 // A run's outcome, steps, largest probe displacement and energy growth are printed in a
 // table at the end.
 
@@ -262,6 +263,21 @@ namespace
         !fs::exists(directory / "probes.csv"))
       return outcome;
     read_results(directory, outcome);
+
+    // e. a diverging explicit run is stopped before it writes absurd energies (the
+    //    sheet's physical energies are below 0.1 J; a blow-up grows about 1e4-fold per
+    //    step, and an area check every 10 steps once let 3e278 J through).
+    if (c.must_stop)
+      {
+        const Csv statistics = read_csv((directory / "statistics.csv").string());
+        double    largest    = 0.;
+        for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+          largest = std::max({largest,
+                              std::abs(statistics.number(r, "kinetic_energy")),
+                              std::abs(statistics.number(r, "elastic_energy"))});
+        passed &=
+          check_below(pcout, "largest energy written before the stop, J", largest, 1e9);
+      }
 
     // c. a plausible final state.
     if (outcome.finished)
