@@ -26,6 +26,26 @@ namespace clothsim
                std::llround(vertex[1] * 1e9),
                std::llround(vertex[2] * 1e9)}};
     }
+
+    // For each of a's vertices that b has too: (index in a, index in b).
+    std::vector<std::pair<unsigned int, unsigned int>>
+    shared_vertices(const std::vector<std::array<double, 6>> &a,
+                    const std::vector<std::array<double, 6>> &b)
+    {
+      std::map<std::array<long long, 3>, unsigned int> index_of;
+      for (unsigned int i = 0; i < b.size(); ++i)
+        index_of[position_key(b[i])] = i;
+      std::vector<std::pair<unsigned int, unsigned int>> pairs;
+      for (unsigned int i = 0; i < a.size(); ++i)
+        {
+          const auto found = index_of.find(position_key(a[i]));
+          if (found != index_of.end())
+            pairs.emplace_back(i, found->second);
+        }
+      if (pairs.empty())
+        throw std::runtime_error("the two runs share no vertex");
+      return pairs;
+    }
   } // namespace
 
 
@@ -93,18 +113,9 @@ namespace clothsim
   restrict_to(const std::vector<std::array<double, 6>> &b,
               const std::vector<std::array<double, 6>> &a)
   {
-    std::map<std::array<long long, 3>, unsigned int> index_of;
-    for (unsigned int i = 0; i < b.size(); ++i)
-      index_of[position_key(b[i])] = i;
     std::vector<std::array<double, 6>> restricted;
-    for (const auto &vertex : a)
-      {
-        const auto found = index_of.find(position_key(vertex));
-        if (found != index_of.end())
-          restricted.push_back(b[found->second]);
-      }
-    if (restricted.empty())
-      throw std::runtime_error("the two runs share no vertex");
+    for (const auto &[in_a, in_b] : shared_vertices(a, b))
+      restricted.push_back(b[in_b]);
     return restricted;
   }
 
@@ -113,26 +124,17 @@ namespace clothsim
   field_difference(const std::vector<std::array<double, 6>> &a,
                    const std::vector<std::array<double, 6>> &b)
   {
-    std::map<std::array<long long, 3>, unsigned int> index_of;
-    for (unsigned int i = 0; i < b.size(); ++i)
-      index_of[position_key(b[i])] = i;
     FieldDifference difference;
     double          sum_squares = 0.;
-    for (const auto &vertex : a)
+    for (const auto &[in_a, in_b] : shared_vertices(a, b))
       {
-        const auto found = index_of.find(position_key(vertex));
-        if (found == index_of.end())
-          continue;
-        const auto &other = b[found->second];
-        double      gap2  = 0.;
+        double gap2 = 0.;
         for (unsigned int d = 3; d < 6; ++d)
-          gap2 += (vertex[d] - other[d]) * (vertex[d] - other[d]);
+          gap2 += (a[in_a][d] - b[in_b][d]) * (a[in_a][d] - b[in_b][d]);
         sum_squares += gap2;
         difference.largest = std::max(difference.largest, std::sqrt(gap2));
         ++difference.common;
       }
-    if (difference.common == 0)
-      throw std::runtime_error("the two runs share no vertex");
     difference.rms = std::sqrt(sum_squares / difference.common);
     return difference;
   }

@@ -122,6 +122,33 @@ namespace clothsim
         path += (path.empty() ? "" : "/") + section;
       return path;
     }
+
+    // 'name: a, b, c; name2: ...' (Output/Probes, Output/Probe references): the pattern
+    // and the parsed entries.
+    Patterns::Map
+    named_triples_pattern()
+    {
+      return Patterns::Map(Patterns::Anything(),
+                           Patterns::List(Patterns::Double(), 3, 3, ","),
+                           0,
+                           1000,
+                           ";",
+                           ":");
+    }
+
+    std::vector<std::pair<std::string, Tensor<1, 3>>>
+    parse_named_triples(const std::string &text)
+    {
+      std::vector<std::pair<std::string, Tensor<1, 3>>> entries;
+      for (const std::string &item : Utilities::split_string_list(text, ';'))
+        {
+          const auto name_value = Utilities::split_string_list(item, ':');
+          const auto v =
+            Utilities::string_to_double(Utilities::split_string_list(name_value[1], ','));
+          entries.emplace_back(name_value[0], Tensor<1, 3>({v[0], v[1], v[2]}));
+        }
+      return entries;
+    }
   } // namespace
 
 
@@ -833,24 +860,14 @@ namespace clothsim
     prm.declare_entry(
       "Probes",
       "",
-      Patterns::Map(Patterns::Anything(),
-                    Patterns::List(Patterns::Double(), 3, 3, ","),
-                    0,
-                    1000,
-                    ";",
-                    ":"),
+      named_triples_pattern(),
       "Named reference points 'name: X, Y, Z; name2: X, Y, Z' (m). Each snaps to "
       "the nearest mesh vertex; probes.csv records its reference position and "
       "displacement.");
     prm.declare_entry(
       "Probe references",
       "",
-      Patterns::Map(Patterns::Anything(),
-                    Patterns::List(Patterns::Double(), 3, 3, ","),
-                    0,
-                    1000,
-                    ";",
-                    ":"),
+      named_triples_pattern(),
       "Closed-form displacements 'probe: ux, uy, uz; ...' (m) of named probes at "
       "the end of the run (static mode: at full load), e.g. an elastica's tip. "
       "Convergence studies (clothsim --convergence) measure the probes' errors "
@@ -870,29 +887,20 @@ namespace clothsim
     interval  = prm.get_double("Output interval");
     write_vtk = prm.get_bool("Write VTK");
     probes.clear();
-    for (const std::string &item : Utilities::split_string_list(prm.get("Probes"), ';'))
+    for (const auto &[name, X] : parse_named_triples(prm.get("Probes")))
+      probes.push_back({name, Point<3>(X), false, {}});
+    for (const auto &[name, u] : parse_named_triples(prm.get("Probe references")))
       {
-        const auto name_value = Utilities::split_string_list(item, ':');
-        const auto xyz =
-          Utilities::string_to_double(Utilities::split_string_list(name_value[1], ','));
-        probes.push_back({name_value[0], Point<3>(xyz[0], xyz[1], xyz[2]), false, {}});
-      }
-    for (const std::string &item :
-         Utilities::split_string_list(prm.get("Probe references"), ';'))
-      {
-        const auto name_value = Utilities::split_string_list(item, ':');
-        const auto u =
-          Utilities::string_to_double(Utilities::split_string_list(name_value[1], ','));
         const auto probe =
           std::find_if(probes.begin(), probes.end(), [&](const Probe &candidate) {
-            return candidate.name == name_value[0];
+            return candidate.name == name;
           });
         if (probe == probes.end())
           throw InputError("",
                            "Output/Probe references",
-                           "no probe named '" + name_value[0] + "' in 'Output/Probes'");
+                           "no probe named '" + name + "' in 'Output/Probes'");
         probe->has_reference          = true;
-        probe->reference_displacement = Tensor<1, 3>({u[0], u[1], u[2]});
+        probe->reference_displacement = u;
       }
     progress = prm.get("Progress");
     prm.leave_subsection();
