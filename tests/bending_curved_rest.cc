@@ -143,7 +143,7 @@ main(int argc, char **argv)
       model.initialize_ghosted(v);
       u = 0.;
       v = 0.;
-      rest_energies.push_back(model.energies(u, v).elastic);
+      rest_energies.push_back(model.energies(u, v, 0.).elastic);
       rest_forces.push_back(largest_internal_force(model, u));
 
       pcout << std::setw(5) << level << std::setw(10) << model.n_vertices()

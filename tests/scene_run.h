@@ -30,6 +30,39 @@ namespace clothsim::test
   using namespace dealii;
 
   // A finished run: the scene (model, probes) and its final state.
+  // Values of the given dofs of `u` (ghosted) on every rank.
+  inline std::vector<double>
+  gather_values(const ClothModel                           &model,
+                const VectorType                           &u,
+                const std::vector<types::global_dof_index> &dofs)
+  {
+    std::vector<double> values(dofs.size(), 0.);
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      if (model.owned_dofs().is_element(dofs[i]))
+        values[i] = u(dofs[i]);
+    MPI_Allreduce(MPI_IN_PLACE,
+                  values.data(),
+                  values.size(),
+                  MPI_DOUBLE,
+                  MPI_SUM,
+                  model.get_communicator());
+    return values;
+  }
+
+  // An output writer of probes.csv and statistics.csv (no VTK) for the model.
+  inline OutputWriter
+  make_output_writer(const std::string                &directory,
+                     const ClothModel                 &model,
+                     const std::vector<ProbeLocation> &probes)
+  {
+    return OutputWriter(directory,
+                        model.get_communicator(),
+                        model.output_piece(),
+                        probes,
+                        model.energy_columns(),
+                        false);
+  }
+
   struct SceneRun
   {
     std::unique_ptr<Scene> scene;
@@ -51,8 +84,9 @@ namespace clothsim::test
         if (probe.name == name)
           {
             const std::vector<double> values =
-              model().gather_values(displacement,
-                                    {probe.dofs[0], probe.dofs[1], probe.dofs[2]});
+              gather_values(model(),
+                            displacement,
+                            {probe.dofs[0], probe.dofs[1], probe.dofs[2]});
             return Tensor<1, 3>({values[0], values[1], values[2]});
           }
       throw std::runtime_error("no probe named " + name);
@@ -72,7 +106,7 @@ namespace clothsim::test
     double
     elastic_energy() const
     {
-      return model().energies(displacement, velocity).elastic;
+      return model().energies(displacement, velocity, 0.).elastic;
     }
   };
 
@@ -92,7 +126,7 @@ namespace clothsim::test
     run.scene          = load_scene(parameter_file, overrides, communicator);
     ClothModel  &model = *run.scene->model;
     TimerOutput  timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
-    OutputWriter output(output_directory, model, run.scene->probes, false);
+    OutputWriter output = make_output_writer(output_directory, model, run.scene->probes);
     model.initialize_ghosted(run.velocity);
     if (is_explicit(run.scene->parameters().time.integrator))
       {
@@ -140,22 +174,22 @@ namespace clothsim::test
                           const double                                 rigidity,
                           const std::function<bool(const Point<3> &)> &inside)
   {
-    const ClothModel &model = run.model();
-    Vector<double>    curvature;
-    model.cell_curvature_change(run.displacement, curvature);
-    double energy = 0., area = 0.;
-    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          bool all_inside = true;
-          for (const unsigned int v : cell->vertex_indices())
-            all_inside = all_inside && inside(cell->vertex(v));
-          if (!all_inside)
-            continue;
-          const double M = curvature[cell->active_cell_index()];
-          energy += 0.5 * rigidity * cell->measure() * M * M;
-          area += cell->measure();
-        }
+    const ClothModel         &model = run.model();
+    const std::vector<double> curvature =
+      model.cell_field(run.displacement, "curvature_change");
+    const auto &elements = model.get_discretization().elements();
+    double      energy = 0., area = 0.;
+    for (unsigned int e = 0; e < elements.size(); ++e)
+      {
+        bool all_inside = true;
+        for (const Point<3> &X : elements[e].reference)
+          all_inside = all_inside && inside(X);
+        if (!all_inside)
+          continue;
+        const double M = curvature[e];
+        energy += 0.5 * rigidity * elements[e].area * M * M;
+        area += elements[e].area;
+      }
     return Utilities::MPI::sum(energy, model.get_communicator()) /
            Utilities::MPI::sum(area, model.get_communicator());
   }

@@ -82,7 +82,7 @@ namespace clothsim
           run.time_step                = parameters.time.time_step;
           const ClothModel &model      = *scenes[m]->model;
           const auto observer = [&run, &model](const double time, const VectorType &u) {
-            auto vertices = model.vertex_displacements(u);
+            auto vertices = model.get_discretization().vertex_displacements(u);
             run.trajectory.times.push_back(time);
             run.trajectory.frames.push_back(std::move(vertices));
           };

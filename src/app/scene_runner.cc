@@ -4,6 +4,7 @@
 #include <deal.II/base/timer.h>
 
 #include "time/explicit_stepper.h"
+#include "time/time_stepper.h"
 
 #include <filesystem>
 #include <fstream>
@@ -74,7 +75,11 @@ namespace clothsim
           << " triangles, " << model.n_dofs() << " unknowns, "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s)\n"
           << "  pinned dofs: " << model.n_pinned_dofs()
-          << ", mass: " << model.total_mass() << " kg\n";
+          << ", mass: " << model.total_mass() << " kg\n"
+          << "  terms:";
+    for (const std::string &name : model.term_names())
+      pcout << " " << name;
+    pcout << "\n";
     if (model.uses_springs())
       {
         const auto counts = model.get_springs().global_counts();
@@ -102,7 +107,12 @@ namespace clothsim
     pcout << "  output: " << directory << std::endl;
 
     TimerOutput  timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
-    OutputWriter output(directory, model, scene.probes, parameters.output.write_vtk);
+    OutputWriter output(directory,
+                        communicator,
+                        model.output_piece(),
+                        scene.probes,
+                        model.energy_columns(),
+                        parameters.output.write_vtk);
     output.set_frame_observer(observer);
     Timer      wall_clock;
     RunOutcome outcome;

@@ -78,7 +78,7 @@ namespace clothsim
 
     ConditionalOStream quiet(std::cout, false);
     const auto         keep_last = [&run, &model](const double, const VectorType &u) {
-      run.vertices = model.vertex_displacements(u);
+      run.vertices = model.get_discretization().vertex_displacements(u);
     };
     const RunOutcome outcome =
       run_loaded_scene(*scene, file, directory, quiet, keep_last);

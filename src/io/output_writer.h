@@ -4,11 +4,13 @@
 // solution-NNNNN.vtu (.pvtu plus one piece per rank under MPI) per output time,
 // probes.csv and statistics.csv. Files are flushed as they are written, and solution.pvd
 // is replaced atomically, so a run that stops early leaves a consistent record of
-// everything up to that point.
+// everything up to that point. The writer knows no model: it receives the mesh piece,
+// the probes' dofs, the energy columns' names, and named fields per frame.
 
-#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/lac/trilinos_vector.h>
 
-#include "scene/cloth_model.h"
+#include "io/probe_location.h"
+#include "io/vtu_writer.h"
 
 #include <fstream>
 #include <functional>
@@ -21,41 +23,50 @@ namespace clothsim
   // One row of statistics.csv.
   struct StepStatistics
   {
-    unsigned int step;
-    double       time; // s (load factor in static mode)
-    double       dt;   // s
-    unsigned int newton_iterations;
-    unsigned int linear_iterations;
-    double       residual;              // final Newton residual 2-norm, N
-    unsigned int retries;               // step halvings before this step was accepted
-    Energies     energies;              // J
-    double       wall_seconds;          // since the run started
-    unsigned int rejected         = 0;  // steps rejected by the error control before it
-    double       error_estimate   = 0.; // local error estimate of the step, m (0: none)
-    double       assembly_seconds = 0.; // wall time of the step spent assembling
-    double       linear_solve_seconds = 0.; // ... in linear solves and preconditioners
+    unsigned int        step;
+    double              time; // s (load factor in static mode)
+    double              dt;   // s
+    unsigned int        newton_iterations;
+    unsigned int        linear_iterations;
+    double              residual;         // final Newton residual 2-norm, N
+    unsigned int        retries;          // step halvings before this step was accepted
+    double              kinetic_energy;   // J
+    double              elastic_energy;   // J
+    double              potential_energy; // J (total: their sum)
+    std::vector<double> term_energies;    // J, one per extra energy column
+    double              wall_seconds;     // since the run started
+    unsigned int        rejected = 0;     // steps rejected by the error control before it
+    double error_estimate        = 0.;    // local error estimate of the step, m (0: none)
+    double assembly_seconds      = 0.;    // wall time of the step spent assembling
+    double linear_solve_seconds  = 0.;    // ... in linear solves and preconditioners
   };
 
   class OutputWriter
   {
   public:
+    // `piece`: this rank's triangles for the VTK frames; `energy_columns`: the columns
+    // of statistics.csv after the fixed ones (one per StepStatistics::term_energies).
     OutputWriter(const std::string                &directory,
-                 const ClothModel                 &model,
+                 const MPI_Comm                    communicator,
+                 const io::SurfacePiece           &piece,
                  const std::vector<ProbeLocation> &probes,
+                 const std::vector<std::string>   &energy_columns,
                  const bool                        write_vtk);
 
-    // VTK frame (if enabled) and probe rows for the state (u, v), both ghosted.
+    // VTK frame (if enabled; `fields` is called for its data) and probe rows for the
+    // displacement u (ghosted).
     void
-    write_state(const unsigned int step,
-                const double       time,
-                const VectorType  &u,
-                const VectorType  &v);
+    write_state(const unsigned int                    step,
+                const double                          time,
+                const TrilinosWrappers::MPI::Vector  &u,
+                const std::function<io::FrameData()> &fields);
 
     void
     write_statistics(const StepStatistics &row);
 
     // Called with every written state (time, ghosted displacement), e.g. to compare runs.
-    using FrameObserver = std::function<void(const double time, const VectorType &u)>;
+    using FrameObserver =
+      std::function<void(const double time, const TrilinosWrappers::MPI::Vector &u)>;
     void
     set_frame_observer(const FrameObserver &observer)
     {
@@ -63,12 +74,11 @@ namespace clothsim
     }
 
   private:
-    void
-    write_vtk_frame(const double time, const VectorType &u, const VectorType &v);
-
     const std::string                           directory;
-    const ClothModel                           &model;
+    const MPI_Comm                              communicator;
+    const io::SurfacePiece                      piece;
     const std::vector<ProbeLocation>            probes;
+    const std::size_t                           n_energy_columns;
     const bool                                  write_vtk;
     const bool                                  is_root;
     std::ofstream                               probes_csv;

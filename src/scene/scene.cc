@@ -37,12 +37,15 @@ namespace clothsim
     if (!is_root)
       scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
 
-    scene->model  = std::make_unique<ClothModel>(communicator,
+    scene->model = std::make_unique<ClothModel>(communicator,
                                                 scene->parameters(),
                                                 parameter_file,
                                                 scene->serial_mesh,
                                                 scene->groups);
-    scene->probes = scene->model->locate_probes(scene->parameters().output.probes);
+    std::vector<std::pair<std::string, Point<3>>> points;
+    for (const Probe &probe : scene->parameters().output.probes)
+      points.emplace_back(probe.name, probe.reference_point);
+    scene->probes = scene->model->get_discretization().locate_probes(points);
     return scene;
   }
 } // namespace clothsim

@@ -18,7 +18,7 @@ namespace clothsim
 
     // Lumped masses inverted, zero on constrained (pinned) dofs. Owned.
     void
-    free_inverse_masses(const ClothModel &model, VectorType &inverse_mass)
+    free_inverse_masses(const ModelInterface &model, VectorType &inverse_mass)
     {
       model.lumped_masses(inverse_mass);
       const AffineConstraints<double> &constraints = model.get_constraints();
@@ -32,8 +32,8 @@ namespace clothsim
   } // namespace
 
 
-  CriticalStepEstimator::CriticalStepEstimator(const ClothModel &model,
-                                               const Parameters &parameters)
+  CriticalStepEstimator::CriticalStepEstimator(const ModelInterface &model,
+                                               const Parameters     &parameters)
     : model(model)
     , parameters(parameters)
   {
@@ -121,30 +121,39 @@ namespace clothsim
 
 
   CriticalStep
-  estimate_critical_step(const ClothModel &model,
-                         const Parameters &parameters,
-                         const VectorType &u)
+  estimate_critical_step(const ModelInterface &model,
+                         const Parameters     &parameters,
+                         const VectorType     &u)
   {
     return CriticalStepEstimator(model, parameters).estimate(u);
   }
 
 
   ExplicitStepper::ExplicitStepper(const Parameters   &parameters,
-                                   ClothModel         &model,
+                                   ModelInterface     &model,
                                    OutputWriter       &output,
                                    ConditionalOStream &pcout,
                                    TimerOutput        &timer)
-    : parameters(parameters)
-    , model(model)
-    , output(output)
-    , pcout(pcout)
-    , timer(timer)
+    : StepperCore(parameters, model, output, pcout, timer)
   {
     free_inverse_masses(model, inverse_mass);
     model.initialize_owned(gradient);
-    model.initialize_owned(previous);
-    model.initialize_ghosted(u_ghosted);
-    model.initialize_ghosted(previous_ghosted);
+    model.initialize_owned(centre);
+    model.initialize_ghosted(centre_ghosted);
+    model.initialize_ghosted(work_ghosted);
+  }
+
+
+  StepTerms
+  ExplicitStepper::damping_terms(const VectorType &u, const VectorType &v)
+  {
+    StepTerms terms;
+    terms.damping_weight = 1.;
+    centre               = u;
+    centre -= v;
+    centre_ghosted = centre;
+    terms.previous = &centre_ghosted;
+    return terms;
   }
 
 
@@ -154,16 +163,11 @@ namespace clothsim
     TimerOutput::Scope scope(timer, "assemble forces");
     // ∇Φ with no inertia and the damping term centred at u - v: its gradient is
     // ∇W - f_g - f_ext + (α M + β K(u)) v, zero on pinned dofs.
-    StepTerms terms;
-    terms.damping_weight = 1.;
-    u_ghosted            = u;
-    previous             = u;
-    previous -= v;
-    previous_ghosted = previous;
-    terms.previous   = &previous_ghosted;
+    const StepTerms terms = damping_terms(u, v);
+    work_ghosted          = u;
     if (parameters.damping.stiffness_proportional > 0.)
-      model.prepare_damping(u_ghosted);
-    model.assemble(u_ghosted, terms, &gradient, nullptr);
+      model.prepare_step(work_ghosted);
+    model.assemble(work_ghosted, terms, &gradient, nullptr);
     a = gradient;
     a.scale(inverse_mass);
     a *= -1.;
@@ -178,21 +182,15 @@ namespace clothsim
     const double dt       = parameters.time.time_step;
     const double interval = parameters.output.interval;
     const double epsilon  = 1e-9 * dt;
-    const bool   limiting =
-      model.uses_springs() && parameters.mass_spring.strain_limit > 0.;
 
-    VectorType u, v, a, u_old;
-    model.initialize_owned(u);
-    model.initialize_owned(v);
-    model.initialize_owned(a);
-    model.initialize_owned(u_old);
-    model.initialize_ghosted(v_ghosted);
-
+    VectorType u, v, a, u_old, v_old;
+    for (VectorType *vector : {&u, &v, &a, &u_old, &v_old})
+      model.initialize_owned(*vector);
     model.initial_state(u, v);
-    u_ghosted = u;
+    work_ghosted = u;
 
     CriticalStepEstimator estimator(model, parameters);
-    critical = estimator.estimate(u_ghosted);
+    critical = estimator.estimate(work_ghosted);
     pcout << "  explicit " << (verlet ? "velocity Verlet" : "symplectic Euler")
           << ": critical step " << critical.estimate << " s (omega_max "
           << critical.omega_max << " 1/s, damping ratio " << critical.damping_ratio
@@ -211,18 +209,11 @@ namespace clothsim
                "(on the default sheet 0.98 x critical diverged after 0.94 s)"
             << std::endl;
 
-    Timer      wall_clock;
     RunSummary summary;
     Progress   progress(std::cout,
                       parameters.output.progress,
                       Utilities::MPI::this_mpi_process(model.get_communicator()) == 0);
-    {
-      TimerOutput::Scope scope(timer, "output");
-      v_ghosted = v;
-      output.write_state(0, 0., u_ghosted, v_ghosted);
-    }
-    output.write_statistics(
-      {0, 0., 0., 0, 0, 0., 0, model.energies(u_ghosted, v_ghosted), 0.});
+    write_first_frame(u, v);
     double next_output      = interval > 0. ? interval : end;
     double checked_activity = 0.; // K + W at the last area check, J
 
@@ -238,6 +229,7 @@ namespace clothsim
         const double time_new = std::min({time + dt, next_output, end});
         const double h        = time_new - time;
         u_old                 = u;
+        v_old                 = v;
         if (verlet)
           {
             v.add(0.5 * h, a); // v_{n+1/2}
@@ -255,6 +247,10 @@ namespace clothsim
           if (inverse_mass[i] == 0.)
             v[i] = (u[i] - u_old[i]) / h;
         v.compress(VectorOperation::insert);
+        // The work against damping: its force at the step's start, D(u_n) v_n, over the
+        // step's displacement (exact for symplectic Euler, first order for Verlet).
+        if (model.has_dissipation())
+          add_dissipation(u_old, damping_terms(u_old, v_old), u, u_old);
         if (verlet)
           {
             acceleration(u, v, a);
@@ -264,27 +260,19 @@ namespace clothsim
                 v[i] = (u[i] - u_old[i]) / h;
             v.compress(VectorOperation::insert);
           }
-        if (limiting)
+        if (model.has_strain_limit())
           {
-            TimerOutput::Scope scope(timer, "strain limit");
-            double             largest   = 0.;
-            const auto         remaining = model.limit_strain(u, v, h, largest);
-            if (remaining > 0)
-              pcout << "step " << step + 1 << ": " << remaining
-                    << " springs still beyond the strain limit (largest strain "
-                    << largest << ") after "
-                    << parameters.mass_spring.strain_limit_iterations << " sweeps"
-                    << std::endl;
+            limit_strain(step + 1, u, v, h);
             if (verlet)
               acceleration(u, v, a);
           }
         time = time_new;
         ++step;
 
-        u_ghosted               = u;
-        v_ghosted               = v;
-        const Energies energies = model.energies(u_ghosted, v_ghosted);
-        const bool     output_now =
+        u_ghosted                   = u;
+        v_ghosted                   = v;
+        const EnergyReport energies = current_energies();
+        const bool         output_now =
           interval == 0. || time >= next_output - epsilon || time >= end - epsilon;
         // Blow-up: a non-finite energy every step; a collapsed or hundredfold grown
         // triangle every 10 steps, at output times, and whenever K + W has more than
@@ -296,13 +284,8 @@ namespace clothsim
           failure = "the energy is not finite";
         else if (step % 10 == 0 || output_now || activity > 4. * checked_activity)
           {
-            checked_activity               = activity;
-            const auto [smallest, largest] = model.area_ratio_range(u_ghosted);
-            if (!(smallest > 1e-6))
-              failure =
-                "a triangle collapsed (area ratio " + std::to_string(smallest) + ")";
-            else if (!(largest < 100.))
-              failure = "a triangle grew " + std::to_string(largest) + " times its area";
+            checked_activity = activity;
+            failure          = blow_up(u_ghosted);
           }
         if (!failure.empty())
           {
@@ -317,25 +300,9 @@ namespace clothsim
             throw SimulationError(message.str());
           }
 
-        const auto spent = step_times.since_last();
-        output.write_statistics({step,
-                                 time,
-                                 h,
-                                 0,
-                                 0,
-                                 0.,
-                                 0,
-                                 energies,
-                                 wall_clock.wall_time(),
-                                 0,
-                                 0.,
-                                 spent.first,
-                                 spent.second});
+        record(step, time, h, StepFigures(), energies, step_times);
         if (output_now)
-          {
-            TimerOutput::Scope scope(timer, "output");
-            output.write_state(step, time, u_ghosted, v_ghosted);
-          }
+          write_frame(step, time);
         if (output_now && interval > 0. && time < end - epsilon)
           {
             // The deformed sheet's critical step; warn once when dt comes to exceed it.

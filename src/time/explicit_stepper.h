@@ -21,7 +21,7 @@
 // blows up (a non-finite energy, a triangle grown a hundredfold or collapsed), keeping
 // the output so far. Steps are shortened to land on output times.
 
-#include "time/time_stepper.h"
+#include "time/stepper_core.h"
 
 namespace clothsim
 {
@@ -40,50 +40,38 @@ namespace clothsim
   class CriticalStepEstimator
   {
   public:
-    CriticalStepEstimator(const ClothModel &model, const Parameters &parameters);
+    CriticalStepEstimator(const ModelInterface &model, const Parameters &parameters);
 
     CriticalStep
     estimate(const VectorType &u);
 
   private:
-    const ClothModel &model;
-    const Parameters &parameters;
-    MatrixType        stiffness;
-    VectorType        inverse_mass, free_masses; // owned; 0 on pinned dofs
-    VectorType        mode, Kz, Mz;              // owned
-    bool              warm = false;
+    const ModelInterface &model;
+    const Parameters     &parameters;
+    MatrixType            stiffness;
+    VectorType            inverse_mass, free_masses; // owned; 0 on pinned dofs
+    VectorType            mode, Kz, Mz;              // owned
+    bool                  warm = false;
   };
 
   // One estimate from the start vector.
   CriticalStep
-  estimate_critical_step(const ClothModel &model,
-                         const Parameters &parameters,
-                         const VectorType &u);
+  estimate_critical_step(const ModelInterface &model,
+                         const Parameters     &parameters,
+                         const VectorType     &u);
 
-  class ExplicitStepper
+  class ExplicitStepper : public StepperCore
   {
   public:
     ExplicitStepper(const Parameters   &parameters,
-                    ClothModel         &model,
+                    ModelInterface     &model,
                     OutputWriter       &output,
                     ConditionalOStream &pcout,
                     TimerOutput        &timer);
 
-    // Runs the whole simulation from the reference state at rest.
+    // Runs the whole simulation from the initial state.
     RunSummary
     run();
-
-    // The displacement and velocity at the end (ghosted).
-    const VectorType &
-    displacement() const
-    {
-      return u_ghosted;
-    }
-    const VectorType &
-    velocity() const
-    {
-      return v_ghosted;
-    }
 
     // The critical step estimated at the start of run().
     const CriticalStep &
@@ -97,16 +85,16 @@ namespace clothsim
     void
     acceleration(const VectorType &u, const VectorType &v, VectorType &a);
 
-    const Parameters   &parameters;
-    ClothModel         &model;
-    OutputWriter       &output;
-    ConditionalOStream &pcout;
-    TimerOutput        &timer;
+    // The damping force of the state (u, v) (owned) as a step's damping term: weight 1,
+    // centre u - v. Sets `centre` and `centre_ghosted`.
+    StepTerms
+    damping_terms(const VectorType &u, const VectorType &v);
 
-    VectorType   inverse_mass; // owned, 0 on pinned dofs
-    VectorType   gradient;     // owned
-    VectorType   previous;     // owned: u - v, the damping term's centre
-    VectorType   u_ghosted, v_ghosted, previous_ghosted;
+    VectorType inverse_mass;   // owned, 0 on pinned dofs
+    VectorType gradient;       // owned
+    VectorType centre;         // owned: u - v, the damping term's centre
+    VectorType centre_ghosted, // ghosted
+      work_ghosted;
     CriticalStep critical{};
   };
 } // namespace clothsim

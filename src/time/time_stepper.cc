@@ -16,7 +16,7 @@ namespace clothsim
     class StepProblem : public NonlinearProblem
     {
     public:
-      StepProblem(const ClothModel &model, const StepTerms &terms, TimerOutput &timer)
+      StepProblem(const ModelInterface &model, const StepTerms &terms, TimerOutput &timer)
         : model(model)
         , terms(terms)
         , timer(timer)
@@ -50,124 +50,49 @@ namespace clothsim
       }
 
     private:
-      const ClothModel &model;
-      StepTerms         terms;
-      TimerOutput      &timer;
-      VectorType        ghosted;
+      const ModelInterface &model;
+      StepTerms             terms;
+      TimerOutput          &timer;
+      VectorType            ghosted;
     };
-
   } // namespace
 
 
-  std::pair<double, double>
-  StepTimes::since_last()
-  {
-    double assembly_total = 0., linear_total = 0.;
-    for (const auto &[section, seconds] :
-         timer.get_summary_data(TimerOutput::total_wall_time))
-      if (section.rfind("assemble", 0) == 0)
-        assembly_total += seconds;
-      else if (section == "linear solve" || section == "preconditioner setup")
-        linear_total += seconds;
-    const std::pair<double, double> step = {assembly_total - assembly,
-                                            linear_total - linear_solve};
-    assembly                             = assembly_total;
-    linear_solve                         = linear_total;
-    return step;
-  }
-
-
   TimeStepper::TimeStepper(const Parameters   &parameters,
-                           ClothModel         &model,
+                           ModelInterface     &model,
                            OutputWriter       &output,
                            ConditionalOStream &pcout,
                            TimerOutput        &timer)
-    : parameters(parameters)
-    , model(model)
-    , output(output)
-    , pcout(pcout)
-    , timer(timer)
+    : StepperCore(parameters, model, output, pcout, timer)
     , newton(parameters.nonlinear_solver,
              parameters.linear_solver,
              model.near_null_space(),
              tangent,
              timer)
+    , dynamic(parameters.time.integrator != Integrator::static_load_steps)
   {
     model.initialize_matrix(tangent);
-    model.initialize_owned(u_n);
-    model.initialize_owned(v_n);
-    model.initialize_owned(u_new);
-    model.initialize_owned(v_new);
-    model.initialize_owned(centre);
-    model.initialize_owned(u_nm1);
-    model.initialize_owned(v_nm1);
-    model.initialize_owned(last_increment);
-    model.initialize_ghosted(u_ghosted);
-    model.initialize_ghosted(v_ghosted);
-    model.initialize_ghosted(u_n_ghosted);
+    for (VectorType *vector :
+         {&u_n, &v_n, &u_new, &v_new, &centre, &u_nm1, &v_nm1, &last_increment})
+      model.initialize_owned(*vector);
+    model.initialize_owned(solved);
     model.initialize_ghosted(predictor_ghosted);
     model.initialize_ghosted(centre_ghosted);
-    displacement_dofs = model.near_null_space().displacement_dofs;
-    if (displacement_dofs.n_elements() == 0)
-      displacement_dofs = model.owned_dofs();
+    model.initialize_ghosted(check_ghosted);
   }
 
 
-  NewtonResult
-  TimeStepper::solve_step(const double time_new,
-                          const double dt,
-                          const double load_factor)
+  StepTerms
+  TimeStepper::predict_step(const double time_new,
+                            const double dt,
+                            const double load_factor)
   {
     const Integrator integrator = parameters.time.integrator;
-    const bool       dynamic    = integrator != Integrator::static_load_steps;
     const bool       bdf2       = integrator == Integrator::bdf2 && previous_step > 0.;
     const bool       midpoint   = integrator == Integrator::implicit_midpoint;
     StepTerms        terms;
     terms.load_factor = load_factor;
-    // BDF2 with step ratio ω = dt/dt_{n-1}, γ = (1+2ω)/(1+ω):
-    //   v_{n+1} = γ/dt (u_{n+1} - ũ),  a_{n+1} = γ/dt (v_{n+1} - ṽ),
-    //   ũ = ((1+ω) u_n - ω²/(1+ω) u_{n-1}) / γ, likewise ṽ;
-    // so the step minimises the incremental potential with w_i = γ²/dt², û = ũ + dt/γ ṽ,
-    // w_d = γ/dt and damping centre ũ. Backward Euler is γ = 1, ũ = u_n, ṽ = v_n; the
-    // implicit midpoint rule is backward Euler over dt/2 to the midpoint x, then
-    // u_{n+1} = 2x - u_n, v_{n+1} = 2(u_{n+1} - u_n)/dt - v_n.
-    double gamma = 1.;
-    if (dynamic)
-      {
-        const double h = midpoint ? dt / 2. : dt;
-        centre         = u_n; // ũ
-        VectorType rate(v_n); // ṽ
-        if (bdf2)
-          {
-            const double omega = dt / previous_step;
-            gamma              = (1. + 2. * omega) / (1. + omega);
-            const double c_n   = (1. + omega) / gamma;
-            const double c_nm1 = omega * omega / ((1. + omega) * gamma);
-            centre.sadd(c_n, -c_nm1, u_nm1);
-            rate.sadd(c_n, -c_nm1, v_nm1);
-          }
-        terms.inertia_weight = gamma * gamma / (h * h);
-        terms.damping_weight = gamma / h;
-        VectorType predictor(centre);
-        predictor.add(h / gamma, rate);
-        predictor_ghosted = predictor;
-        centre_ghosted    = centre;
-        terms.predictor   = &predictor_ghosted;
-        terms.previous    = &centre_ghosted;
-        u_new             = predictor; // Newton's initial guess
-        model.apply_pinned_displacement(time_new, u_new);
-        if (midpoint)
-          {
-            // The pins' midpoint positions, so that 2x - u_n lands on them at t_{n+1}.
-            u_new.add(1., u_n);
-            u_new *= 0.5;
-            for (const types::global_dof_index i : model.owned_dofs())
-              if (!model.get_constraints().is_constrained(i))
-                u_new[i] = predictor[i];
-            u_new.compress(VectorOperation::insert);
-          }
-      }
-    else
+    if (!dynamic)
       {
         // Secant predictor along the load path (angles included: the last increment's
         // angles are the director rotation it took, relative to the re-based
@@ -176,25 +101,87 @@ namespace clothsim
         if (last_load_increment > 0.)
           u_new.add(dt / last_load_increment, last_increment);
         model.apply_pinned_displacement(load_factor, u_new);
+        return terms;
       }
 
+    // BDF2 with step ratio ω = dt/dt_{n-1}, γ = (1+2ω)/(1+ω):
+    //   v_{n+1} = γ/dt (u_{n+1} - ũ),  a_{n+1} = γ/dt (v_{n+1} - ṽ),
+    //   ũ = ((1+ω) u_n - ω²/(1+ω) u_{n-1}) / γ, likewise ṽ;
+    // so the step minimises the incremental potential with w_i = γ²/dt², û = ũ + dt/γ ṽ,
+    // w_d = γ/dt and damping centre ũ. Backward Euler is γ = 1, ũ = u_n, ṽ = v_n; the
+    // implicit midpoint rule is backward Euler over dt/2 to the midpoint x, then
+    // u_{n+1} = 2x - u_n, v_{n+1} = 2(u_{n+1} - u_n)/dt - v_n.
+    gamma          = 1.;
+    const double h = midpoint ? dt / 2. : dt;
+    centre         = u_n; // ũ
+    VectorType rate(v_n); // ṽ
+    if (bdf2)
+      {
+        const double omega = dt / previous_step;
+        gamma              = (1. + 2. * omega) / (1. + omega);
+        const double c_n   = (1. + omega) / gamma;
+        const double c_nm1 = omega * omega / ((1. + omega) * gamma);
+        centre.sadd(c_n, -c_nm1, u_nm1);
+        rate.sadd(c_n, -c_nm1, v_nm1);
+      }
+    terms.inertia_weight = gamma * gamma / (h * h);
+    terms.damping_weight = gamma / h;
+    VectorType predictor(centre);
+    predictor.add(h / gamma, rate);
+    predictor_ghosted = predictor;
+    centre_ghosted    = centre;
+    terms.predictor   = &predictor_ghosted;
+    terms.previous    = &centre_ghosted;
+    u_new             = predictor; // Newton's initial guess
+    model.apply_pinned_displacement(time_new, u_new);
+    if (midpoint)
+      {
+        // The pins' midpoint positions, so that 2x - u_n lands on them at t_{n+1}.
+        u_new.add(1., u_n);
+        u_new *= 0.5;
+        for (const types::global_dof_index i : model.owned_dofs())
+          if (!model.get_constraints().is_constrained(i))
+            u_new[i] = predictor[i];
+        u_new.compress(VectorOperation::insert);
+      }
+    return terms;
+  }
+
+
+  TimeStepper::Attempt
+  TimeStepper::attempt_step(const double time_new,
+                            const double dt,
+                            const double load_factor)
+  {
+    const bool midpoint = parameters.time.integrator == Integrator::implicit_midpoint;
+    Attempt    attempt;
+
+    // predict (u_ghosted holds the state n)
+    if (dynamic)
+      model.prepare_step(u_ghosted);
+    const StepTerms terms = predict_step(time_new, dt, load_factor);
+    last_terms            = terms;
+
+    // solve. A tangent kept by 'modified newton' is one of these weights only. ML's
+    // hierarchy recomputed on the aggregates of a differently scaled tangent can fail
+    // (measured: a step ratio of 0.54 made CG fail in 2000 iterations): a new step size
+    // gets a new hierarchy. With adaptive steps Newton stops once its updates are a
+    // tenth of the time-error tolerance: solving further would be below the truncation
+    // error.
     StepProblem problem(model, terms, timer);
-    // A tangent kept by 'modified newton' is one of these weights only.
-    // ML's hierarchy recomputed on the aggregates of a differently scaled tangent can
-    // fail (measured: a step ratio of 0.54 made CG fail in 2000 iterations): a new step
-    // size gets a new hierarchy.
     if (terms.inertia_weight != tangent_weights.first ||
         terms.damping_weight != tangent_weights.second)
       newton.invalidate_tangent(/*rescaled=*/true);
     tangent_weights = {terms.inertia_weight, terms.damping_weight};
-    // With adaptive steps Newton stops once its updates are a tenth of the time-error
-    // tolerance: solving further would be below the truncation error.
     const double newton_floor =
       dynamic && parameters.time.adaptive_time_steps ? 0.1 * step_tolerance(dt, 0.) : 0.;
-    NewtonResult result = newton.solve(problem, u_new, newton_floor);
-    if (!result.converged)
-      return result;
+    attempt.newton = newton.solve(problem, u_new, newton_floor);
+    if (!attempt.newton.converged)
+      return attempt;
 
+    // The work against damping is taken at the solved iterate (the midpoint's x).
+    if (dynamic && model.has_dissipation())
+      solved = u_new;
     if (dynamic)
       {
         if (midpoint)
@@ -211,21 +198,45 @@ namespace clothsim
             v_new *= gamma / dt;
           }
       }
-    // A collapsed or hundredfold grown triangle is no cloth state (the explicit stepper's
-    // divergence test too): the step is cut like a failed Newton solve. A single
-    // linearised step of a stiff, fast-rotating sheet can stretch it that far.
-    u_ghosted                      = u_new;
-    const auto [smallest, largest] = model.area_ratio_range(u_ghosted);
-    if (!(smallest > 1e-6) || !(largest < 100.))
+
+    // check: a collapsed or hundredfold grown triangle is no cloth state (the explicit
+    // stepper's divergence test too): the step is cut like a failed Newton solve. A
+    // single linearised step of a stiff, fast-rotating sheet can stretch it that far.
+    check_ghosted             = u_new;
+    const std::string failure = blow_up(check_ghosted);
+    if (!failure.empty())
       {
-        result.converged = false;
-        result.failure =
-          smallest < 0. ? "NaN in the solution"
-          : !(smallest > 1e-6)
-            ? "a triangle collapsed (area ratio " + std::to_string(smallest) + ")"
-            : "a triangle grew " + std::to_string(largest) + " times its area";
+        attempt.newton.converged = false;
+        attempt.newton.failure   = failure;
+        return attempt;
       }
-    return result;
+    if (dynamic)
+      std::tie(attempt.error_estimate, attempt.order) = error_estimate(dt);
+    return attempt;
+  }
+
+
+  void
+  TimeStepper::commit_step(const unsigned int step, const double dt)
+  {
+    if (dynamic)
+      {
+        add_dissipation(solved, last_terms, u_new, u_n);
+        u_nm1         = u_n;
+        v_nm1         = v_n;
+        previous_step = dt;
+        v_n           = v_new;
+        limit_strain(step, u_new, v_n, dt);
+      }
+    last_increment = u_new;
+    last_increment -= u_n;
+    last_load_increment = dt;
+    u_n                 = u_new;
+    // The terms' after-step hooks (shell directors re-based, angles back to zero).
+    u_ghosted = u_n;
+    model.commit_step(u_ghosted, u_n);
+    u_ghosted = u_n;
+    v_ghosted = v_n;
   }
 
 
@@ -266,7 +277,7 @@ namespace clothsim
         a_weight = 0.5 * dt * dt / previous_step;
       }
     double largest = 0.;
-    for (const types::global_dof_index i : displacement_dofs)
+    for (const types::global_dof_index i : model.displacement_dofs())
       {
         const double predicted = u_n[i] + dt * v_n[i] + a_weight * (v_n[i] - v_nm1[i]);
         largest                = std::max(largest, std::abs(u_new[i] - predicted));
@@ -278,8 +289,7 @@ namespace clothsim
   RunSummary
   TimeStepper::run()
   {
-    const bool   dynamic = parameters.time.integrator != Integrator::static_load_steps;
-    const double end     = dynamic ? parameters.time.end_time : 1.;
+    const double end = dynamic ? parameters.time.end_time : 1.;
     double       nominal_step =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
     const bool   adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;
@@ -289,14 +299,12 @@ namespace clothsim
     const unsigned int max_halvings  = parameters.time.max_step_halvings;
     const double       epsilon       = 1e-9 * nominal_step;
 
-    Timer      wall_clock;
     RunSummary summary;
     Progress   progress(std::cout,
                       parameters.output.progress,
                       Utilities::MPI::this_mpi_process(model.get_communicator()) == 0);
 
-    // Initial state: at rest in the reference configuration, pins at their t = 0
-    // position.
+    // Initial state (static mode: the reference configuration, pins at λ = 0).
     if (dynamic)
       model.initial_state(u_n, v_n);
     else
@@ -306,14 +314,7 @@ namespace clothsim
         model.apply_pinned_displacement(0., u_n);
       }
     previous_step = 0.;
-    u_ghosted     = u_n;
-    v_ghosted     = v_n;
-    {
-      TimerOutput::Scope scope(timer, "output");
-      output.write_state(0, 0., u_ghosted, v_ghosted);
-    }
-    output.write_statistics(
-      {0, 0., 0., 0, 0, 0., 0, model.energies(u_ghosted, v_ghosted), 0.});
+    write_first_frame(u_n, v_n);
     double next_output = output_interval;
 
     double       time = 0.;
@@ -331,12 +332,11 @@ namespace clothsim
             const double dt =
               std::min((target - time), nominal_step / std::pow(2., halvings));
             const double time_new = (target - time - dt < epsilon) ? target : time + dt;
-            u_n_ghosted           = u_n;
-            if (dynamic)
-              model.prepare_damping(u_n_ghosted);
 
-            const NewtonResult result =
-              solve_step(time_new, time_new - time, dynamic ? 1. : time_new);
+            // predict, solve, check
+            const Attempt attempt =
+              attempt_step(time_new, time_new - time, dynamic ? 1. : time_new);
+            const NewtonResult &result = attempt.newton;
             summary.newton_iterations += result.iterations;
             summary.tangents += result.tangents;
             last_iterations = result.iterations;
@@ -348,9 +348,8 @@ namespace clothsim
                     "Newton failed at t = " + std::to_string(time_new) +
                     " with dt = " + std::to_string(time_new - time) + " after " +
                     std::to_string(halvings) + " step halvings (" + result.failure +
-                    "); the run stops here, output up "
-                    "to t = " +
-                    std::to_string(time) + " is kept");
+                    "); the run stops here, output up to t = " + std::to_string(time) +
+                    " is kept");
                 ++halvings;
                 ++summary.retries;
                 progress.finish();
@@ -361,91 +360,54 @@ namespace clothsim
                 continue;
               }
 
-            // Error control (the estimate is written for every dynamic step).
-            double estimate = 0.;
-            if (dynamic)
+            // accept or reject (the estimate is written for every dynamic step)
+            if (adaptive)
               {
-                const auto [error, order] = error_estimate(time_new - time);
-                estimate                  = error;
-                if (adaptive)
+                const double error = attempt.error_estimate;
+                const double tolerance =
+                  step_tolerance(time_new - time, u_new.linfty_norm());
+                const double factor =
+                  error > 0. ? std::clamp(0.9 * std::pow(tolerance / error,
+                                                         1. / (attempt.order + 1.)),
+                                          0.2,
+                                          2.)
+                             : 2.;
+                next_step =
+                  std::min(factor * (time_new - time), parameters.time.maximum_time_step);
+                if (error > tolerance)
                   {
-                    const double tolerance =
-                      step_tolerance(time_new - time, u_new.linfty_norm());
-                    const double factor =
-                      error > 0.
-                        ? std::clamp(0.9 * std::pow(tolerance / error, 1. / (order + 1.)),
-                                     0.2,
-                                     2.)
-                        : 2.;
-                    next_step = std::min(factor * (time_new - time),
-                                         parameters.time.maximum_time_step);
-                    if (error > tolerance)
-                      {
-                        if (time_new - time < 1e-12 * end)
-                          throw SimulationError(
-                            "the error estimate " + std::to_string(error) +
-                            " m stays above the tolerance " + std::to_string(tolerance) +
-                            " m at dt = " + std::to_string(time_new - time) +
-                            " s; output up to t = " + std::to_string(time) + " is kept");
-                        ++rejected;
-                        ++summary.rejected;
-                        nominal_step = next_step;
-                        target       = std::min(time + nominal_step, end);
-                        halvings     = 0;
-                        continue;
-                      }
+                    if (time_new - time < 1e-12 * end)
+                      throw SimulationError(
+                        "the error estimate " + std::to_string(error) +
+                        " m stays above the tolerance " + std::to_string(tolerance) +
+                        " m at dt = " + std::to_string(time_new - time) +
+                        " s; output up to t = " + std::to_string(time) + " is kept");
+                    ++rejected;
+                    ++summary.rejected;
+                    nominal_step = next_step;
+                    target       = std::min(time + nominal_step, end);
+                    halvings     = 0;
+                    continue;
                   }
               }
 
-            // Accept: shift the state (BDF2 keeps one more).
+            // commit
             const double dt_taken = time_new - time;
-            if (dynamic)
-              {
-                u_nm1         = u_n;
-                v_nm1         = v_n;
-                previous_step = dt_taken;
-                v_n           = v_new;
-              }
-            if (dynamic && model.uses_springs() &&
-                parameters.mass_spring.strain_limit > 0.)
-              {
-                TimerOutput::Scope scope(timer, "strain limit");
-                double             largest = 0.;
-                const auto remaining = model.limit_strain(u_new, v_n, dt_taken, largest);
-                if (remaining > 0)
-                  pcout << "step " << step + 1 << ": " << remaining
-                        << " springs still beyond the strain limit (largest strain "
-                        << largest << ") after "
-                        << parameters.mass_spring.strain_limit_iterations << " sweeps"
-                        << std::endl;
-              }
-            last_increment = u_new;
-            last_increment -= u_n;
-            last_load_increment = dt_taken;
-            u_n                 = u_new;
-            time                = time_new;
+            time                  = time_new;
             ++step;
-            // Shell directors: re-base on the converged state (angles back to zero).
-            u_ghosted = u_n;
-            model.rebase_directors(u_ghosted, u_n);
-            u_ghosted        = u_n;
-            v_ghosted        = v_n;
-            const auto spent = step_times.since_last();
-            output.write_statistics({step,
-                                     time,
-                                     dt_taken,
-                                     result.iterations,
-                                     result.linear_iterations,
-                                     result.residual_norm,
-                                     halvings,
-                                     model.energies(u_ghosted, v_ghosted),
-                                     wall_clock.wall_time(),
-                                     rejected,
-                                     estimate,
-                                     spent.first,
-                                     spent.second});
+            commit_step(step, dt_taken);
+
+            // record
+            StepFigures figures;
+            figures.newton_iterations = result.iterations;
+            figures.linear_iterations = result.linear_iterations;
+            figures.residual          = result.residual_norm;
+            figures.retries           = halvings;
+            figures.rejected          = rejected;
+            figures.error_estimate    = attempt.error_estimate;
+            record(step, time, dt_taken, figures, current_energies(), step_times);
             rejected = 0;
-            summary.estimated_error += estimate;
+            summary.estimated_error += attempt.error_estimate;
             if (adaptive)
               {
                 // The controller's step replaces any Newton halvings of this one.
@@ -456,8 +418,7 @@ namespace clothsim
             const bool last = time >= end - epsilon;
             if (last || output_interval == 0. || time >= next_output - epsilon)
               {
-                TimerOutput::Scope scope(timer, "output");
-                output.write_state(step, time, u_ghosted, v_ghosted);
+                write_frame(step, time);
                 while (next_output <= time + epsilon && output_interval > 0.)
                   next_output += output_interval;
               }

@@ -1,94 +1,64 @@
 #pragma once
 
-// The time loop: predict, solve the step's incremental potential with Newton, accept or
-// cut the step, write output. Backward Euler (Gast & Schroeder 2014's optimisation form):
+// The implicit time loop. Each step goes through named stages:
+//   predict  the step's weights, centres and Newton's initial guess (predict_step)
+//   solve    Newton on the step's incremental potential (physics/term.h)
+//   check    a failed solve, or a result with NaN or a collapsed or hundredfold grown
+//            triangle, halves the step (up to 'Maximum step halvings', and says so)
+//   accept or reject   the local error estimate against the tolerance (adaptive steps)
+//   commit   shift the state, strain limit, the terms' after-step hooks
+//   record   statistics.csv, and the VTK frame and probes at output times
+// Backward Euler (Gast & Schroeder 2014's optimisation form):
 //   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} =
 //   (u_{n+1} - u_n)/dt.
 // BDF2 (variable step) and the implicit midpoint rule are the same minimisation with
-// other weights and centres (see solve_step). Adaptive time steps: every dynamic step
+// other weights and centres (see predict_step). Adaptive time steps: every dynamic step
 // gets a local error estimate (error_estimate); with 'Adaptive time steps' a step above
 // the tolerance is rejected and retried with dt (tol/err)^(1/(p+1)) 0.9 (factor 0.2 to
 // 2), and accepted steps propose the next dt the same way. Static mode: the load factor λ
 // goes 1/N, 2/N, ..., 1 (or adaptive increments); each increment minimises W - λ fᵀ u,
-// starting from the secant predictor along the load path. A step whose Newton solve fails
-// (or whose result holds NaN or a collapsed triangle) is retried with half the step, up
-// to 'Maximum step halvings' times, and the log says so.
+// starting from the secant predictor along the load path.
 
-#include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/timer.h>
-
-#include "io/output_writer.h"
-#include "scene/cloth_model.h"
 #include "solvers/newton_solver.h"
-
-#include <stdexcept>
+#include "time/stepper_core.h"
 
 namespace clothsim
 {
-  // The run cannot go on (Newton failed at the smallest step, NaN, collapsed triangles).
-  // Everything written before it stays.
-  class SimulationError : public std::runtime_error
-  {
-  public:
-    using std::runtime_error::runtime_error;
-  };
-
-  // Wall time spent in assembly ("assemble ..." sections) and in linear solves ("linear
-  // solve", "preconditioner setup") since the last call, from `timer`'s totals.
-  class StepTimes
-  {
-  public:
-    explicit StepTimes(const TimerOutput &timer)
-      : timer(timer)
-    {}
-
-    // {assembly, linear solve} seconds since the last call.
-    std::pair<double, double>
-    since_last();
-
-  private:
-    const TimerOutput &timer;
-    double             assembly = 0., linear_solve = 0.;
-  };
-
-  // Totals of a finished run.
-  struct RunSummary
-  {
-    unsigned int steps             = 0;
-    unsigned int newton_iterations = 0;
-    unsigned int linear_iterations = 0;
-    unsigned int retries           = 0;
-    unsigned int rejected          = 0; // steps rejected by the error control
-    unsigned int tangents          = 0; // tangents assembled
-    double estimated_error = 0.; // m: the accepted steps' local error estimates, summed
-  };
-
-  class TimeStepper
+  class TimeStepper : public StepperCore
   {
   public:
     TimeStepper(const Parameters   &parameters,
-                ClothModel         &model,
+                ModelInterface     &model,
                 OutputWriter       &output,
                 ConditionalOStream &pcout,
                 TimerOutput        &timer);
 
-    // Runs the whole simulation from the reference state at rest.
+    // Runs the whole simulation from the initial state.
     RunSummary
     run();
 
-    // The displacement and velocity at the end (ghosted).
-    const VectorType &
-    displacement() const
-    {
-      return u_ghosted;
-    }
-    const VectorType &
-    velocity() const
-    {
-      return v_ghosted;
-    }
-
   private:
+    // The outcome of one attempted step.
+    struct Attempt
+    {
+      NewtonResult newton;
+      double       error_estimate = 0.; // m
+      unsigned int order          = 1;  // of the estimate
+    };
+
+    // predict: the step's terms and Newton's initial guess u_new for the step of size dt
+    // to time_new from state n.
+    StepTerms
+    predict_step(const double time_new, const double dt, const double load_factor);
+
+    // predict, solve and check one step; leaves u_new (and v_new).
+    Attempt
+    attempt_step(const double time_new, const double dt, const double load_factor);
+
+    // commit: the accepted step of size dt becomes state n.
+    void
+    commit_step(const unsigned int step, const double dt);
+
     // Local error estimate (m, largest over the displacement dofs) of the step just
     // solved (u_new from u_n, v_n over dt) and the order it assumes: the difference to
     // an explicit Taylor predictor of the method's order, times the ratio of the error
@@ -105,18 +75,9 @@ namespace clothsim
     double
     step_tolerance(const double dt, const double largest_displacement) const;
 
-    // Solves one step of size dt from state n; returns the Newton result, leaves u_new.
-    NewtonResult
-    solve_step(const double time_new, const double dt, const double load_factor);
-
-    const Parameters   &parameters;
-    ClothModel         &model;
-    OutputWriter       &output;
-    ConditionalOStream &pcout;
-    TimerOutput        &timer;
-
     MatrixType   tangent;
     NewtonSolver newton;
+    bool         dynamic;
 
     VectorType u_n, v_n, u_new, v_new; // owned
     VectorType centre;                 // owned: ũ, the step's damping centre
@@ -125,12 +86,14 @@ namespace clothsim
     double     previous_step = 0.;
     // The inertia and damping weights of the last step's tangent.
     std::pair<double, double> tangent_weights = {-1., -1.};
-    IndexSet displacement_dofs; // owned displacement dofs (no director angles)
     // Static mode: the last load increment's displacement change and size, for the
     // secant predictor u_n + (Δλ/Δλ_last) Δu_last.
     VectorType last_increment; // owned
     double     last_load_increment = 0.;
-    VectorType u_ghosted, v_ghosted, u_n_ghosted, predictor_ghosted; // ghosted
-    VectorType centre_ghosted; // ghosted: the damping term's centre (ũ)
+    VectorType predictor_ghosted, centre_ghosted; // ghosted: û and ũ of the step
+    VectorType check_ghosted;                     // ghosted: u_new for the check
+    double     gamma = 1.; // the step's BDF2 factor γ (1: backward Euler, midpoint)
+    StepTerms  last_terms; // of the last solved step
+    VectorType solved;     // owned: its solved iterate (the midpoint's x)
   };
 } // namespace clothsim

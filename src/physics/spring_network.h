@@ -23,7 +23,6 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include "io/parameters.h"
 #include "physics/mass_spring.h"
 
 #include <array>
@@ -31,6 +30,22 @@
 
 namespace clothsim
 {
+  using namespace dealii;
+
+  // Where the spring constants come from.
+  struct SpringConstants
+  {
+    // Derived from the continuum (true) or the uniform values below (false).
+    bool   derived;
+    double stretch_stiffness;    // k_m = E h, N/m (derived)
+    double poisson_ratio;        // ν (derived)
+    bool   bending;              // cross springs from the bending rigidity (derived)
+    double bending_rigidity;     // D, N·m (derived)
+    double bend_reference_angle; // θ_r, rad (derived)
+    double structural_stiffness; // N/m (given)
+    double cross_stiffness;      // N/m, shear + bend (given)
+  };
+
   class SpringNetwork
   {
   public:
@@ -54,9 +69,9 @@ namespace clothsim
 
     // `dof_handler` carries FE_SimplexP(1)^3 (displacements only); `ghosted_prototype`
     // is a ghosted vector of the model's layout (for local indices,
-    // scene/ghosted_values.h).
+    // mesh/ghosted_values.h).
     SpringNetwork(const DoFHandler<2, 3> &dof_handler,
-                  const Parameters       &parameters,
+                  const SpringConstants  &constants,
                   const VectorType       &ghosted_prototype);
 
     const std::vector<Entry> &
@@ -84,16 +99,23 @@ namespace clothsim
 
     // Adds this rank's springs to a step's potential: energy (returned), gradient and
     // Hessian (each may be null; distributed through `constraints`, not compressed).
-    // `projected`: each spring's Hessian drops its negative transverse part. Damping:
-    // c/2 sᵀ K_n s with s = u - u_n, K_n from prepare_damping (skipped if c = 0).
+    // `projected`: each spring's Hessian drops its negative transverse part.
     double
     add_to_potential(const VectorType                &u,
                      const bool                       projected,
-                     const double                     damping_coefficient,
-                     const VectorType                *previous,
                      const AffineConstraints<double> &constraints,
                      VectorType                      *gradient,
                      MatrixType                      *hessian) const;
+
+    // Adds stiffness-proportional damping c/2 sᵀ K_n s with s = u - u_n (`previous`,
+    // ghosted), K_n from prepare_damping, like add_to_potential.
+    double
+    add_damping(const VectorType                &u,
+                const double                     damping_coefficient,
+                const VectorType                &previous,
+                const AffineConstraints<double> &constraints,
+                VectorType                      *gradient,
+                MatrixType                      *hessian) const;
 
     // The springs' projected Hessians at u_n, for stiffness-proportional damping.
     void

@@ -1,6 +1,6 @@
-#include "scene/spring_network.h"
+#include "physics/spring_network.h"
 
-#include "scene/ghosted_values.h"
+#include "mesh/ghosted_values.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
@@ -70,14 +70,14 @@ namespace clothsim
 
 
   SpringNetwork::SpringNetwork(const DoFHandler<2, 3> &dof_handler,
-                               const Parameters       &parameters,
+                               const SpringConstants  &constants,
                                const VectorType       &ghosted_prototype)
     : communicator(dof_handler.get_communicator())
     , n_relevant_dofs(ghosted_prototype.trilinos_vector().MyLength())
   {
-    const MassSpringParameters &springs  = parameters.mass_spring;
-    const MaterialParameters   &material = parameters.material;
-    const bool                  derived  = springs.derived_constants;
+    const SpringConstants &springs  = constants;
+    const SpringConstants &material = constants;
+    const bool             derived  = springs.derived;
 
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -135,7 +135,7 @@ namespace clothsim
               const double cross_length = (neighbor->vertex(q) - cell->vertex(p)).norm();
               double       k_cross      = 0.;
               if (!derived)
-                k_cross = springs.shear_stiffness + springs.bend_stiffness;
+                k_cross = springs.cross_stiffness;
               else if (material.bending)
                 k_cross = physics::bend_spring_stiffness(material.bending_rigidity,
                                                          edge_length,
@@ -255,57 +255,26 @@ namespace clothsim
   double
   SpringNetwork::add_to_potential(const VectorType                &u,
                                   const bool                       projected,
-                                  const double                     damping_coefficient,
-                                  const VectorType                *previous,
                                   const AffineConstraints<double> &constraints,
                                   VectorType                      *gradient,
                                   MatrixType                      *hessian) const
   {
-    const bool damping = damping_coefficient > 0.;
-    Assert(!damping || (previous != nullptr && damping_tangents.size() == entries.size()),
-           ExcInternalError());
-    if (gradient == nullptr && hessian == nullptr && !damping)
+    if (gradient == nullptr && hessian == nullptr)
       return energy(u);
-
-    const double *u_local = ghosted_values(u, n_relevant_dofs);
-    const double *previous_local =
-      damping ? ghosted_values(*previous, n_relevant_dofs) : nullptr;
     std::vector<types::global_dof_index> dofs(6);
     Vector<double>                       cell_vector(6);
     FullMatrix<double>                   cell_matrix(6, 6);
     physics::SpringVector                g;
     physics::SpringMatrix                H;
     double                               value = 0.;
-    for (unsigned int s = 0; s < entries.size(); ++s)
+    for (const Entry &entry : entries)
       {
-        const Entry &entry = entries[s];
         value +=
           physics::spring_energy_gradient_hessian(entry.spring,
                                                   current_positions(entry, u),
                                                   projected,
                                                   g,
                                                   hessian != nullptr ? &H : nullptr);
-        if (damping)
-          {
-            // c/2 sᵀ K_n s, s = u - u_n.
-            const physics::SpringMatrix &K = damping_tangents[s];
-            std::array<double, 6>        step;
-            for (unsigned int i = 0; i < 6; ++i)
-              step[i] =
-                u_local[entry.local_dofs[i]] - previous_local[entry.local_dofs[i]];
-            for (unsigned int i = 0; i < 6; ++i)
-              {
-                double Ks = 0.;
-                for (unsigned int j = 0; j < 6; ++j)
-                  {
-                    Ks += K[i][j] * step[j];
-                    if (hessian != nullptr)
-                      H[i][j] += damping_coefficient * K[i][j];
-                  }
-                g[i] += damping_coefficient * Ks;
-                value += 0.5 * damping_coefficient * step[i] * Ks;
-              }
-          }
         std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
         if (gradient != nullptr)
           {
@@ -320,6 +289,50 @@ namespace clothsim
                 cell_matrix(i, j) = H[i][j];
             constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
           }
+      }
+    return value;
+  }
+
+
+  double
+  SpringNetwork::add_damping(const VectorType                &u,
+                             const double                     damping_coefficient,
+                             const VectorType                &previous,
+                             const AffineConstraints<double> &constraints,
+                             VectorType                      *gradient,
+                             MatrixType                      *hessian) const
+  {
+    Assert(damping_tangents.size() == entries.size(), ExcInternalError());
+    const double *u_local        = ghosted_values(u, n_relevant_dofs);
+    const double *previous_local = ghosted_values(previous, n_relevant_dofs);
+    std::vector<types::global_dof_index> dofs(6);
+    Vector<double>                       cell_vector(6);
+    FullMatrix<double>                   cell_matrix(6, 6);
+    double                               value = 0.;
+    for (unsigned int s = 0; s < entries.size(); ++s)
+      {
+        // c/2 sᵀ K_n s, s = u - u_n.
+        const Entry                 &entry = entries[s];
+        const physics::SpringMatrix &K     = damping_tangents[s];
+        std::array<double, 6>        step;
+        for (unsigned int i = 0; i < 6; ++i)
+          step[i] = u_local[entry.local_dofs[i]] - previous_local[entry.local_dofs[i]];
+        for (unsigned int i = 0; i < 6; ++i)
+          {
+            double Ks = 0.;
+            for (unsigned int j = 0; j < 6; ++j)
+              {
+                Ks += K[i][j] * step[j];
+                cell_matrix(i, j) = damping_coefficient * K[i][j];
+              }
+            cell_vector[i] = damping_coefficient * Ks;
+            value += 0.5 * damping_coefficient * step[i] * Ks;
+          }
+        std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
+        if (gradient != nullptr)
+          constraints.distribute_local_to_global(cell_vector, dofs, *gradient);
+        if (hessian != nullptr)
+          constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
       }
     return value;
   }

@@ -1,0 +1,89 @@
+#include "physics/membrane_term.h"
+
+#include <limits>
+
+namespace clothsim::physics
+{
+  MembraneTerm::MembraneTerm(const MembraneMaterial &material,
+                             const double            areal_density,
+                             const bool              lumped_mass,
+                             const double            mass_proportional_damping)
+    : material(material)
+    , areal_density(areal_density)
+    , lumped_mass(lumped_mass)
+    , mass_proportional_damping(mass_proportional_damping)
+  {}
+
+
+  void
+  MembraneTerm::add_to_step(const ElementState &element,
+                            const StepTerms    &step,
+                            double             &value,
+                            LocalVector        *gradient,
+                            LocalMatrix        *hessian) const
+  {
+    const MembraneRestData &rest = element.rest;
+    if (gradient == nullptr && hessian == nullptr)
+      {
+        value += membrane_energy(material, rest, element.x);
+        return;
+      }
+
+    const double mass_weight =
+      step.inertia_weight + step.damping_weight * mass_proportional_damping;
+    const double  stress_floor = step.projected_tangent
+                                   ? mass_weight * areal_density / (lumped_mass ? 9. : 36.)
+                                   : std::numeric_limits<double>::infinity();
+    ElementVector g;
+    ElementMatrix H;
+    value += membrane_energy_gradient_hessian(
+      material, rest, element.x, stress_floor, g, hessian != nullptr ? &H : nullptr);
+    for (unsigned int i = 0; i < 9; ++i)
+      {
+        if (gradient != nullptr)
+          (*gradient)[i] += g[i];
+        if (hessian != nullptr)
+          for (unsigned int j = 0; j < 9; ++j)
+            (*hessian)[i][j] += H[i][j];
+      }
+  }
+
+
+  double
+  MembraneTerm::energy(const ElementState &element, const std::array<double, 9> &) const
+  {
+    return membrane_energy(material, element.rest, element.x);
+  }
+
+
+  void
+  MembraneTerm::projected_hessian(const TrianglePositions &reference,
+                                  const TrianglePositions &x,
+                                  ElementMatrix           &hessian) const
+  {
+    ElementVector gradient;
+    membrane_energy_gradient_hessian(material,
+                                     membrane_rest_data(reference),
+                                     x,
+                                     /*stress_floor=*/0.,
+                                     gradient,
+                                     &hessian);
+  }
+
+
+  void
+  MembraneTerm::add_cell_fields(const mesh::Discretization &discretization,
+                                const VectorType           &u,
+                                std::vector<CellField>     &fields) const
+  {
+    CellField             stress{"membrane_stress", {}};
+    std::array<double, 9> u_e;
+    for (const auto &element : discretization.elements())
+      stress.values.push_back(
+        membrane_strain_stress(material,
+                               membrane_rest_data(element.reference),
+                               discretization.current_positions(element, u, u_e))
+          .stress_norm);
+    fields.push_back(stress);
+  }
+} // namespace clothsim::physics

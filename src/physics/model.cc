@@ -1,0 +1,377 @@
+#include "physics/model.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace clothsim::physics
+{
+  std::string
+  Term::report_column() const
+  {
+    std::string column = name() + "_energy";
+    std::replace(column.begin(), column.end(), ' ', '_');
+    return column;
+  }
+
+
+  Model::Model(const mesh::Discretization      &discretization,
+               const AffineConstraints<double> &constraints)
+    : discretization(discretization)
+    , constraints(constraints)
+    , directors(discretization.has_directors())
+  {
+    for (const auto &element : discretization.elements())
+      rest.push_back(membrane_rest_data(element.reference));
+  }
+
+
+  void
+  Model::add(std::unique_ptr<ElementTerm> term)
+  {
+    AssertThrow(global_terms.empty(),
+                ExcMessage("element terms come before the other terms"));
+    all_terms.push_back(term.get());
+    element_terms.push_back(std::move(term));
+  }
+
+
+  void
+  Model::add(std::unique_ptr<GlobalTerm> term)
+  {
+    all_terms.push_back(term.get());
+    global_terms.push_back(std::move(term));
+  }
+
+
+  const Term *
+  Model::find(const std::string &name) const
+  {
+    for (const Term *term : all_terms)
+      if (term->name() == name)
+        return term;
+    return nullptr;
+  }
+
+
+  bool
+  Model::has_dissipation() const
+  {
+    return std::any_of(all_terms.begin(), all_terms.end(), [](const Term *term) {
+      return term->kind() == TermKind::dissipative;
+    });
+  }
+
+
+  void
+  Model::initialize_matrix(MatrixType &matrix) const
+  {
+    discretization.initialize_matrix(matrix,
+                                     constraints,
+                                     [this](TrilinosWrappers::SparsityPattern &sparsity) {
+                                       for (const auto &term : global_terms)
+                                         term->add_couplings(sparsity, constraints);
+                                     });
+  }
+
+
+  template <class Function>
+  void
+  Model::for_each_element(const VectorType &u,
+                          const VectorType *predictor,
+                          const VectorType *previous,
+                          const Function   &function) const
+  {
+    std::array<double, 9> u_e, predictor_e, previous_e;
+    EdgeAngles            psi      = {{0., 0., 0.}};
+    const auto           &elements = discretization.elements();
+    for (unsigned int e = 0; e < elements.size(); ++e)
+      {
+        const auto             &element = elements[e];
+        const TrianglePositions x = discretization.current_positions(element, u, u_e);
+        if (predictor != nullptr)
+          discretization.gather(*predictor, element, predictor_e);
+        else
+          predictor_e = u_e;
+        if (previous != nullptr)
+          discretization.gather(*previous, element, previous_e);
+        else
+          previous_e = u_e;
+        if (directors)
+          for (unsigned int i = 0; i < 3; ++i)
+            psi[i] = u(element.angle_dofs[i]);
+        function(ElementState{
+          e, element.reference, rest[e], x, u_e, predictor_e, previous_e, psi});
+      }
+  }
+
+
+  double
+  Model::assemble(const VectorType &u,
+                  const StepTerms  &step,
+                  VectorType       *gradient,
+                  MatrixType       *hessian) const
+  {
+    const VectorType *predictor = step.inertia_weight > 0. ? step.predictor : nullptr;
+    const VectorType *previous =
+      step.damping_weight > 0. && has_dissipation() ? step.previous : nullptr;
+    Assert(step.inertia_weight == 0. || predictor != nullptr, ExcInternalError());
+    Assert(step.damping_weight == 0. || !has_dissipation() || previous != nullptr,
+           ExcInternalError());
+    if (gradient != nullptr)
+      *gradient = 0.;
+    if (hessian != nullptr)
+      *hessian = 0.;
+
+    const unsigned int                   n_local = directors ? 12 : 9;
+    LocalVector                          g;
+    LocalMatrix                          H;
+    Vector<double>                       cell_vector(n_local);
+    FullMatrix<double>                   cell_matrix(n_local, n_local);
+    std::vector<types::global_dof_index> dof_vector(n_local);
+    double                               value    = 0.;
+    const auto                          &elements = discretization.elements();
+    for_each_element(u, predictor, previous, [&](const ElementState &state) {
+      g.fill(0.);
+      if (hessian != nullptr)
+        for (auto &row : H)
+          row.fill(0.);
+      for (const auto &term : element_terms)
+        term->add_to_step(state,
+                          step,
+                          value,
+                          gradient != nullptr ? &g : nullptr,
+                          hessian != nullptr ? &H : nullptr);
+
+      const auto &element = elements[state.index];
+      std::copy(element.dofs.begin(), element.dofs.end(), dof_vector.begin());
+      if (directors)
+        std::copy(element.angle_dofs.begin(),
+                  element.angle_dofs.end(),
+                  dof_vector.begin() + 9);
+      if (gradient != nullptr)
+        {
+          for (unsigned int i = 0; i < n_local; ++i)
+            cell_vector[i] = g[i];
+          constraints.distribute_local_to_global(cell_vector, dof_vector, *gradient);
+        }
+      if (hessian != nullptr)
+        {
+          for (unsigned int i = 0; i < n_local; ++i)
+            for (unsigned int j = 0; j < n_local; ++j)
+              cell_matrix(i, j) = H[i][j];
+          constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
+        }
+    });
+
+    for (const auto &term : global_terms)
+      value += term->add_to_step(u, step, constraints, gradient, hessian);
+
+    if (gradient != nullptr)
+      gradient->compress(VectorOperation::add);
+    if (hessian != nullptr)
+      {
+        // Unit diagonal on the unused (constrained) angle-component dofs.
+        FullMatrix<double>                   unit(1, 1);
+        std::vector<types::global_dof_index> single(1);
+        unit(0, 0) = 1.;
+        for (const types::global_dof_index dof : discretization.unused_dofs())
+          if (discretization.owned_dofs().is_element(dof))
+            {
+              single[0] = dof;
+              constraints.distribute_local_to_global(unit, single, *hessian);
+            }
+        hessian->compress(VectorOperation::add);
+      }
+    return Utilities::MPI::sum(value, discretization.get_communicator());
+  }
+
+
+  double
+  Model::dissipated_work(const VectorType &u,
+                         const StepTerms  &step,
+                         const VectorType &increment) const
+  {
+    double                local_work = 0.;
+    LocalVector           g;
+    std::array<double, 9> increment_e;
+    const auto           &elements = discretization.elements();
+    for_each_element(u, nullptr, step.previous, [&](const ElementState &state) {
+      g.fill(0.);
+      bool dissipative = false;
+      for (const auto &term : element_terms)
+        if (term->kind() == TermKind::dissipative)
+          {
+            double value = 0.;
+            term->add_to_step(state, step, value, &g, nullptr);
+            dissipative = true;
+          }
+      if (!dissipative)
+        return;
+      discretization.gather(increment, elements[state.index], increment_e);
+      for (unsigned int i = 0; i < 9; ++i)
+        local_work += g[i] * increment_e[i];
+    });
+    double work = Utilities::MPI::sum(local_work, discretization.get_communicator());
+
+    const AffineConstraints<double> none;
+    VectorType                      gradient, increment_owned;
+    for (const auto &term : global_terms)
+      if (term->kind() == TermKind::dissipative)
+        {
+          if (gradient.size() == 0)
+            {
+              discretization.initialize_owned(gradient);
+              discretization.initialize_owned(increment_owned);
+              increment_owned = increment;
+            }
+          gradient = 0.;
+          term->add_to_step(u, step, none, &gradient, nullptr);
+          gradient.compress(VectorOperation::add);
+          work += gradient * increment_owned;
+        }
+    return work;
+  }
+
+
+  void
+  Model::elastic_forces(const VectorType &u, VectorType &forces) const
+  {
+    forces = 0.;
+    const StepTerms                      step;
+    LocalVector                          g;
+    std::vector<types::global_dof_index> dofs;
+    std::vector<double>                  values;
+    const auto                          &elements = discretization.elements();
+    for_each_element(u, nullptr, nullptr, [&](const ElementState &state) {
+      g.fill(0.);
+      for (const auto &term : element_terms)
+        if (term->kind() == TermKind::elastic)
+          {
+            double value = 0.;
+            term->add_to_step(state, step, value, &g, nullptr);
+          }
+      const auto &element = elements[state.index];
+      dofs.assign(element.dofs.begin(), element.dofs.end());
+      values.assign(g.begin(), g.begin() + 9);
+      if (directors)
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            dofs.push_back(element.angle_dofs[i]);
+            values.push_back(g[9 + i]);
+          }
+      forces.add(dofs, values);
+    });
+    const AffineConstraints<double> none;
+    for (const auto &term : global_terms)
+      if (term->kind() == TermKind::elastic)
+        term->add_to_step(u, step, none, &forces, nullptr);
+    forces.compress(VectorOperation::add);
+  }
+
+
+  Energies
+  Model::energies(const VectorType &u, const VectorType &v) const
+  {
+    std::vector<double>   local(all_terms.size(), 0.);
+    std::array<double, 9> v_e;
+    const auto           &elements = discretization.elements();
+    for_each_element(u, nullptr, nullptr, [&](const ElementState &state) {
+      discretization.gather(v, elements[state.index], v_e);
+      for (unsigned int k = 0; k < element_terms.size(); ++k)
+        local[k] += element_terms[k]->energy(state, v_e);
+    });
+    for (unsigned int k = 0; k < global_terms.size(); ++k)
+      local[element_terms.size() + k] += global_terms[k]->energy(u, v);
+
+    Energies result;
+    result.terms = local;
+    MPI_Allreduce(MPI_IN_PLACE,
+                  result.terms.data(),
+                  result.terms.size(),
+                  MPI_DOUBLE,
+                  MPI_SUM,
+                  discretization.get_communicator());
+    for (unsigned int k = 0; k < all_terms.size(); ++k)
+      switch (all_terms[k]->kind())
+        {
+          case TermKind::kinetic:
+            result.kinetic += result.terms[k];
+            break;
+          case TermKind::elastic:
+            result.elastic += result.terms[k];
+            break;
+          case TermKind::potential:
+          case TermKind::constraint:
+            result.potential += result.terms[k];
+            break;
+          case TermKind::dissipative:
+            break;
+        }
+    return result;
+  }
+
+
+  void
+  Model::prepare_step(const VectorType &u_n)
+  {
+    for (Term *term : all_terms)
+      term->prepare_step(u_n);
+  }
+
+
+  void
+  Model::commit_step(const VectorType &u, VectorType &u_owned)
+  {
+    for (Term *term : all_terms)
+      term->commit_step(u, u_owned);
+  }
+
+
+  std::pair<double, double>
+  Model::area_ratio_range(const VectorType &u) const
+  {
+    // The strain measures' area ratio needs no material.
+    const MembraneMaterial geometry{1., 0.};
+    std::array<double, 9>  u_e;
+    double                 smallest = std::numeric_limits<double>::max(), largest = 0.;
+    const auto            &elements = discretization.elements();
+    for (unsigned int e = 0; e < elements.size(); ++e)
+      {
+        const TrianglePositions x = discretization.current_positions(elements[e], u, u_e);
+        const double ratio = membrane_strain_stress(geometry, rest[e], x).area_ratio;
+        // NaN: smallest -1 and largest infinite, so that both checks catch it.
+        smallest = std::min(smallest, std::isfinite(ratio) ? ratio : -1.);
+        largest =
+          std::max(largest,
+                   std::isfinite(ratio) ? ratio
+                                        : std::numeric_limits<double>::infinity());
+      }
+    return {Utilities::MPI::min(smallest, discretization.get_communicator()),
+            Utilities::MPI::max(largest, discretization.get_communicator())};
+  }
+
+
+  std::vector<CellField>
+  Model::cell_fields(const VectorType &u) const
+  {
+    const MembraneMaterial geometry{1., 0.};
+    std::vector<CellField> fields(1, CellField{"green_strain", {}});
+    std::array<double, 9>  u_e;
+    const auto            &elements = discretization.elements();
+    for (unsigned int e = 0; e < elements.size(); ++e)
+      {
+        const TrianglePositions x = discretization.current_positions(elements[e], u, u_e);
+        fields[0].values.push_back(
+          membrane_strain_stress(geometry, rest[e], x).green_strain_norm);
+      }
+    for (const Term *term : all_terms)
+      if (const auto *source = dynamic_cast<const FieldSource *>(term))
+        source->add_cell_fields(discretization, u, fields);
+    return fields;
+  }
+} // namespace clothsim::physics

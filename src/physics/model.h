@@ -1,0 +1,135 @@
+#pragma once
+
+// The model of a scene: the list of terms it needs (physics/term.h), summed. One cell
+// loop gathers each triangle's state once and lets every element term add to the same
+// local gradient and Hessian; then every other term runs its own loop. A term that is
+// not in the list costs nothing. Energies, output fields and the geometric checks of the
+// steppers (area ratios) are evaluated here too.
+
+#include "mesh/discretization.h"
+#include "physics/term.h"
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace clothsim::physics
+{
+  // Energies at a state, J, summed over ranks: by kind, and per term (in the model's
+  // term order).
+  struct Energies
+  {
+    double              kinetic   = 0.;
+    double              elastic   = 0.;
+    double              potential = 0.; // gravity, pressure, loads: 0 at the reference
+    std::vector<double> terms;
+  };
+
+  // A per-triangle output field (values in the order of the elements).
+  struct CellField
+  {
+    std::string         name;
+    std::vector<double> values;
+  };
+
+  class Model
+  {
+  public:
+    // `constraints`: zero Newton updates at pinned and clamped dofs (kept by reference).
+    Model(const mesh::Discretization      &discretization,
+          const AffineConstraints<double> &constraints);
+
+    void
+    add(std::unique_ptr<ElementTerm> term);
+    void
+    add(std::unique_ptr<GlobalTerm> term);
+
+    // Every term, element terms first, in the order added.
+    const std::vector<Term *> &
+    terms() const
+    {
+      return all_terms;
+    }
+    // The term called `name`, or null.
+    const Term *
+    find(const std::string &name) const;
+    bool
+    has_dissipation() const;
+
+    // The tangent's sparsity: cells plus the couplings of the other terms.
+    void
+    initialize_matrix(MatrixType &matrix) const;
+
+    // Φ(u) of the step (u ghosted; returned, summed over ranks); if non-null, its
+    // gradient (owned, zero at constrained dofs) and Hessian (constrained rows and
+    // columns eliminated, unit diagonal on the unused angle dofs).
+    double
+    assemble(const VectorType &u,
+             const StepTerms  &step,
+             VectorType       *gradient,
+             MatrixType       *hessian) const;
+
+    // The work done against the dissipative terms over a step: their gradient at the
+    // solved iterate `u` (ghosted) of the step `step`, dotted with the step's
+    // displacement `increment` (ghosted), J, summed over ranks.
+    double
+    dissipated_work(const VectorType &u,
+                    const StepTerms  &step,
+                    const VectorType &increment) const;
+
+    // The elastic forces ∇W(u) of the elastic terms on every dof, constrained ones
+    // included (u ghosted, `forces` owned).
+    void
+    elastic_forces(const VectorType &u, VectorType &forces) const;
+
+    // Energies at displacement u and velocity v (ghosted).
+    Energies
+    energies(const VectorType &u, const VectorType &v) const;
+
+    void
+    prepare_step(const VectorType &u_n);
+    void
+    commit_step(const VectorType &u, VectorType &u_owned);
+
+    // Smallest and largest current/reference area ratio over all triangles (collapse and
+    // blow-up detection); a NaN gives (-1, infinity).
+    std::pair<double, double>
+    area_ratio_range(const VectorType &u) const;
+
+    // Per-triangle fields at u (ghosted): the Green strain norm sqrt(tr(M²)) and each
+    // element term's own fields.
+    std::vector<CellField>
+    cell_fields(const VectorType &u) const;
+
+  private:
+    // Calls function(element state) for every locally owned triangle, with û and u_n
+    // gathered only if given (else equal to u) and the angles only with directors.
+    template <class Function>
+    void
+    for_each_element(const VectorType &u,
+                     const VectorType *predictor,
+                     const VectorType *previous,
+                     const Function   &function) const;
+
+    const mesh::Discretization               &discretization;
+    const AffineConstraints<double>          &constraints;
+    std::vector<std::unique_ptr<ElementTerm>> element_terms;
+    std::vector<std::unique_ptr<GlobalTerm>>  global_terms;
+    std::vector<Term *>                       all_terms;
+    bool                                      directors = false;
+    std::vector<MembraneRestData>             rest; // per element, for strain and areas
+  };
+
+  // Output fields of an element term (membrane stress, curvature change, ...).
+  class FieldSource
+  {
+  public:
+    virtual ~FieldSource() = default;
+    // Appends this term's per-triangle fields at u (ghosted).
+    virtual void
+    add_cell_fields(const mesh::Discretization &discretization,
+                    const VectorType           &u,
+                    std::vector<CellField>     &fields) const = 0;
+  };
+} // namespace clothsim::physics

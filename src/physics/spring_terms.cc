@@ -1,0 +1,90 @@
+#include "physics/spring_terms.h"
+
+namespace clothsim::physics
+{
+  SpringTerm::SpringTerm(std::shared_ptr<const SpringNetwork> network)
+    : network(std::move(network))
+  {}
+
+
+  void
+  SpringTerm::add_couplings(TrilinosWrappers::SparsityPattern &sparsity,
+                            const AffineConstraints<double>   &constraints) const
+  {
+    network->add_sparsity(sparsity, constraints);
+  }
+
+
+  double
+  SpringTerm::add_to_step(const VectorType                &u,
+                          const StepTerms                 &step,
+                          const AffineConstraints<double> &constraints,
+                          VectorType                      *gradient,
+                          MatrixType                      *hessian) const
+  {
+    return network->add_to_potential(
+      u, step.projected_tangent, constraints, gradient, hessian);
+  }
+
+
+  double
+  SpringTerm::energy(const VectorType &u, const VectorType &) const
+  {
+    return network->energy(u);
+  }
+
+
+  void
+  SpringTerm::add_cell_fields(const mesh::Discretization &discretization,
+                              const VectorType           &u,
+                              std::vector<CellField>     &fields) const
+  {
+    CellField             strain{"spring_strain", {}};
+    std::array<double, 9> u_e;
+    for (const auto &element : discretization.elements())
+      {
+        const TrianglePositions x = discretization.current_positions(element, u, u_e);
+        double                  largest = 0.;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            const unsigned int a = (i + 1) % 3, b = (i + 2) % 3;
+            const double       edge_strain =
+              (x[b] - x[a]).norm() /
+                (element.reference[b] - element.reference[a]).norm() -
+              1.;
+            if (std::abs(edge_strain) > std::abs(largest))
+              largest = edge_strain;
+          }
+        strain.values.push_back(largest);
+      }
+    fields.push_back(strain);
+  }
+
+
+  SpringDamping::SpringDamping(std::shared_ptr<SpringNetwork> network,
+                               const double                   stiffness_proportional)
+    : network(std::move(network))
+    , beta(stiffness_proportional)
+  {}
+
+
+  void
+  SpringDamping::prepare_step(const VectorType &u_n)
+  {
+    network->prepare_damping(u_n);
+  }
+
+
+  double
+  SpringDamping::add_to_step(const VectorType                &u,
+                             const StepTerms                 &step,
+                             const AffineConstraints<double> &constraints,
+                             VectorType                      *gradient,
+                             MatrixType                      *hessian) const
+  {
+    if (step.damping_weight == 0. || step.previous == nullptr)
+      return 0.;
+    return network->add_damping(
+      u, step.damping_weight * beta, *step.previous, constraints, gradient, hessian);
+  }
+} // namespace clothsim::physics

@@ -1,0 +1,101 @@
+#pragma once
+
+// The mass-spring model's terms (physics/spring_network.h): the springs' energy
+// Σ ½ k (ℓ - L)² in place of the membrane and bending elements, and their
+// stiffness-proportional damping w_d β/2 sᵀ K_n s (K_n: the springs' projected Hessians
+// at the step's start). Both loop over the springs, not over the cells.
+
+#include "mesh/discretization.h"
+#include "physics/model.h"
+#include "physics/spring_network.h"
+
+#include <memory>
+
+namespace clothsim::physics
+{
+  class SpringTerm : public GlobalTerm, public FieldSource
+  {
+  public:
+    explicit SpringTerm(std::shared_ptr<const SpringNetwork> network);
+
+    std::string
+    name() const override
+    {
+      return "springs";
+    }
+    TermKind
+    kind() const override
+    {
+      return TermKind::elastic;
+    }
+
+    void
+    add_couplings(TrilinosWrappers::SparsityPattern &sparsity,
+                  const AffineConstraints<double>   &constraints) const override;
+
+    double
+    add_to_step(const VectorType                &u,
+                const StepTerms                 &step,
+                const AffineConstraints<double> &constraints,
+                VectorType                      *gradient,
+                MatrixType                      *hessian) const override;
+
+    double
+    energy(const VectorType &u, const VectorType &v) const override;
+
+    // spring_strain: per triangle, the strain (ℓ - L)/L of its edge with the largest
+    // |strain| (the structural springs' strain).
+    void
+    add_cell_fields(const mesh::Discretization &discretization,
+                    const VectorType           &u,
+                    std::vector<CellField>     &fields) const override;
+
+  private:
+    std::shared_ptr<const SpringNetwork> network;
+  };
+
+
+  class SpringDamping : public GlobalTerm
+  {
+  public:
+    // β in s.
+    SpringDamping(std::shared_ptr<SpringNetwork> network,
+                  const double                   stiffness_proportional);
+
+    std::string
+    name() const override
+    {
+      return "spring damping";
+    }
+    TermKind
+    kind() const override
+    {
+      return TermKind::dissipative;
+    }
+    std::string
+    report_column() const override
+    {
+      return "damping_dissipated";
+    }
+
+    void
+    prepare_step(const VectorType &u_n) override;
+
+    double
+    add_to_step(const VectorType                &u,
+                const StepTerms                 &step,
+                const AffineConstraints<double> &constraints,
+                VectorType                      *gradient,
+                MatrixType                      *hessian) const override;
+
+    double
+    energy(const VectorType &, const VectorType &) const override
+    {
+      return 0.;
+    }
+
+  private:
+    std::shared_ptr<SpringNetwork> network;
+    const double                   beta;
+  };
+} // namespace clothsim::physics

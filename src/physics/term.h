@@ -1,0 +1,163 @@
+#pragma once
+
+// The step's incremental potential as a sum of named terms (Gast & Schroeder, SCA 2014;
+// backward Euler when w_i = 1/dt², w_d = 1/dt):
+//   Φ(u) = w_i/2 (u - û)ᵀ M (u - û)                      inertia      (kinetic)
+//        + W_membrane(u) + W_bending(u) + W_springs(u)   elastic terms
+//        - λ f_gᵀ u + λ Φ_p(u) - λ f_extᵀ u              gravity, pressure, loads
+//        + w_d/2 (u - u_n)ᵀ (α M + β K_n) (u - u_n)      Rayleigh damping (dissipative)
+// Each term gives its value, gradient and Hessian (exact, or projected to positive
+// semi-definite), and its energy at a state (u, v) for the run's energy budget. Element
+// terms are sums over triangles and share one cell loop (physics/model.h); other terms
+// (springs, point loads, contact pairs) bring their own loop over their candidates.
+
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include "physics/bending.h"
+#include "physics/membrane.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace clothsim
+{
+  using namespace dealii;
+
+  using VectorType = TrilinosWrappers::MPI::Vector;
+  using MatrixType = TrilinosWrappers::SparseMatrix;
+
+  // Coefficients of one step's incremental potential (see physics/term.h).
+  struct StepTerms
+  {
+    double            inertia_weight    = 0.;      // w_i, 1/s²
+    double            damping_weight    = 0.;      // w_d, 1/s
+    double            load_factor       = 1.;      // λ
+    const VectorType *predictor         = nullptr; // û (ghosted); needed if w_i > 0
+    const VectorType *previous          = nullptr; // u_n (ghosted); needed if w_d > 0
+    bool              projected_tangent = true;    // Hessian: projected (PSD) or exact
+  };
+} // namespace clothsim
+
+namespace clothsim::physics
+{
+  // What a term is, for the energy report: kinetic (½ vᵀ M v), elastic (stored strain
+  // energy), potential (of the loads), dissipative (no stored energy: the stepper sums
+  // the work done against it), constraint (barriers, penalties).
+  enum class TermKind
+  {
+    kinetic,
+    elastic,
+    potential,
+    dissipative,
+    constraint
+  };
+
+  // 12 local unknowns of an element: x0, x1, x2 (9), then the edge angles ψ0, ψ1, ψ2.
+  using LocalVector = BendingVector;
+  using LocalMatrix = BendingMatrix;
+
+  // One triangle as the element terms see it in the cell loop.
+  struct ElementState
+  {
+    unsigned int             index;     // in Discretization::elements()
+    const TrianglePositions &reference; // X, m
+    // The reference metric Ā, its inverse and the area |T̄| (physics/membrane.h).
+    const MembraneRestData      &rest;
+    const TrianglePositions     &x; // current positions, m
+    const std::array<double, 9> &u; // displacements, m
+    // û and u_n on the element (equal to u when the step has no such term).
+    const std::array<double, 9> &predictor;
+    const std::array<double, 9> &previous;
+    // With directors: the element's edge angles ψ, rad (else unset).
+    const EdgeAngles &psi;
+  };
+
+  class Term
+  {
+  public:
+    virtual ~Term() = default;
+
+    // Short lower-case name ("membrane", "gravity"); statistics.csv gets a column
+    // `<name>_energy` (spaces as underscores) unless the term names its own.
+    virtual std::string
+    name() const = 0;
+
+    virtual TermKind
+    kind() const = 0;
+
+    // The column of statistics.csv that reports this term, and the value reported there
+    // for the term's energy E (its contribution to the total).
+    virtual std::string
+    report_column() const;
+    virtual double
+    reported_value(const double energy) const
+    {
+      return energy;
+    }
+
+    // Before a step from u_n (ghosted): e.g. stiffness-proportional damping's K_n.
+    virtual void
+    prepare_step(const VectorType & /*u_n*/)
+    {}
+
+    // After a converged step at u (ghosted; `u_owned` may be changed, e.g. director
+    // angles re-based to zero).
+    virtual void
+    commit_step(const VectorType & /*u*/, VectorType & /*u_owned*/)
+    {}
+  };
+
+  // A term that is a sum over the triangles.
+  class ElementTerm : public Term
+  {
+  public:
+    // Whether the term reads the director angles (then 12 local unknowns, else 9).
+    virtual bool
+    uses_directors() const
+    {
+      return false;
+    }
+
+    // Adds the element's part of Φ to `value`, and of its derivatives to `gradient` and
+    // `hessian` (each may be null; entries 9..11 only if uses_directors()).
+    virtual void
+    add_to_step(const ElementState &element,
+                const StepTerms    &step,
+                double             &value,
+                LocalVector        *gradient,
+                LocalMatrix        *hessian) const = 0;
+
+    // The element's energy at (u, v): v_e holds the element's velocities.
+    virtual double
+    energy(const ElementState &element, const std::array<double, 9> &v_e) const = 0;
+  };
+
+  // A term with its own loop (springs, point loads, contact pairs).
+  class GlobalTerm : public Term
+  {
+  public:
+    // Couplings of dofs that share no cell.
+    virtual void
+    add_couplings(TrilinosWrappers::SparsityPattern & /*sparsity*/,
+                  const AffineConstraints<double> & /*constraints*/) const
+    {}
+
+    // Adds this rank's part of Φ at u (ghosted; returned, not summed over ranks) to
+    // `gradient` (owned) and `hessian` (each may be null), distributed through
+    // `constraints`, not compressed.
+    virtual double
+    add_to_step(const VectorType                &u,
+                const StepTerms                 &step,
+                const AffineConstraints<double> &constraints,
+                VectorType                      *gradient,
+                MatrixType                      *hessian) const = 0;
+
+    // This rank's part of the energy at (u, v) (ghosted).
+    virtual double
+    energy(const VectorType &u, const VectorType &v) const = 0;
+  };
+} // namespace clothsim::physics

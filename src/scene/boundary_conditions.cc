@@ -1,0 +1,255 @@
+#include "scene/boundary_conditions.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include "io/input_error.h"
+
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace clothsim
+{
+  namespace
+  {
+    // Each pinned group as a vertex predicate, with the components it pins.
+    struct GroupPin
+    {
+      std::array<bool, 3>   components;
+      int                   boundary_id = -1; // line group
+      int                   material_id = -1; // surface group
+      std::vector<Point<3>> points;           // point group
+    };
+
+    std::string
+    list_names(const std::vector<std::string> &names)
+    {
+      std::string known;
+      for (const std::string &n : names)
+        known += (known.empty() ? "" : ", ") + n;
+      return known.empty() ? "none" : known;
+    }
+  } // namespace
+
+
+  BoundaryConditions::BoundaryConditions(const mesh::Discretization &discretization,
+                                         const Parameters           &parameters,
+                                         const std::string          &parameter_file,
+                                         const mesh::MeshGroups     &groups)
+    : discretization(discretization)
+    , pinned_displacement(3)
+    , initial_displacement(3)
+    , initial_velocity(3)
+  {
+    std::vector<GroupPin> group_pins;
+    for (const PinnedGroup &group : parameters.constraints.pinned_groups)
+      {
+        GroupPin pin;
+        pin.components = group.components;
+        if (const auto line = groups.line_groups.find(group.name);
+            line != groups.line_groups.end())
+          pin.boundary_id = line->second;
+        else if (const auto surface = groups.surface_groups.find(group.name);
+                 surface != groups.surface_groups.end())
+          pin.material_id = surface->second;
+        else if (const auto point = groups.point_groups.find(group.name);
+                 point != groups.point_groups.end())
+          pin.points = point->second;
+        else
+          throw InputError(parameter_file,
+                           "Constraints/Pinned groups",
+                           "the mesh has no group named '" + group.name +
+                             "' (its groups: " + list_names(groups.all_names()) + ")");
+        group_pins.push_back(pin);
+      }
+    // Clamped groups: boundary lines whose vertices are fixed in every component.
+    std::set<types::boundary_id> clamped_ids;
+    for (const std::string &name : parameters.constraints.clamped_groups)
+      {
+        const auto line = groups.line_groups.find(name);
+        if (line == groups.line_groups.end())
+          {
+            std::vector<std::string> line_names;
+            for (const auto &[n, id] : groups.line_groups)
+              line_names.push_back(n);
+            throw InputError(parameter_file,
+                             "Constraints/Clamped groups",
+                             "the mesh has no boundary line group named '" + name +
+                               "' (its line groups: " + list_names(line_names) + ")");
+          }
+        GroupPin pin;
+        pin.components  = {{true, true, true}};
+        pin.boundary_id = line->second;
+        group_pins.push_back(pin);
+        clamped_ids.insert(line->second);
+      }
+
+    // Matching tolerance for point groups: far below any edge length.
+    const DoFHandler<2, 3> &dof_handler = discretization.get_dof_handler();
+    const double            tolerance =
+      1e-8 * GridTools::diameter(dof_handler.get_triangulation().get_triangulation());
+    const auto        &vertex_component = discretization.local_dof_vertex_component();
+    const unsigned int dofs_per_cell    = discretization.get_fe().n_dofs_per_cell();
+
+    std::map<types::global_dof_index, PinnedDof> found;
+    std::vector<types::global_dof_index>         dof_indices(dofs_per_cell);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(dof_indices);
+          // pinned[vertex][component]
+          std::array<std::array<bool, 3>, 3> pinned_here{};
+          for (const GroupPin &pin : group_pins)
+            {
+              std::array<bool, 3> vertex_in_group = {{false, false, false}};
+              if (pin.material_id >= 0 &&
+                  cell->material_id() == types::material_id(pin.material_id))
+                vertex_in_group = {{true, true, true}};
+              for (unsigned int v = 0; v < 3; ++v)
+                for (const Point<3> &p : pin.points)
+                  if (cell->vertex(v).distance(p) < tolerance)
+                    vertex_in_group[v] = true;
+              if (pin.boundary_id >= 0)
+                for (const unsigned int f : cell->face_indices())
+                  if (cell->face(f)->at_boundary() &&
+                      cell->face(f)->boundary_id() == types::boundary_id(pin.boundary_id))
+                    for (unsigned int fv = 0; fv < 2; ++fv)
+                      for (unsigned int v = 0; v < 3; ++v)
+                        if (cell->vertex_index(v) == cell->face(f)->vertex_index(fv))
+                          vertex_in_group[v] = true;
+              for (unsigned int v = 0; v < 3; ++v)
+                for (unsigned int c = 0; c < 3; ++c)
+                  pinned_here[v][c] =
+                    pinned_here[v][c] || (vertex_in_group[v] && pin.components[c]);
+            }
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            {
+              const auto [vertex, component] = vertex_component[i];
+              if (component < 3 && pinned_here[vertex][component])
+                found[dof_indices[i]] = {dof_indices[i], component, cell->vertex(vertex)};
+              // The angle of a clamped boundary line (P2 line dof vertex - 3).
+              if (component == 3 && vertex >= 3 &&
+                  cell->line(vertex - 3)->at_boundary() &&
+                  clamped_ids.count(cell->line(vertex - 3)->boundary_id()) > 0)
+                clamped_angle_dofs.insert(dof_indices[i]);
+            }
+        }
+
+    constraint_set.reinit(discretization.relevant_dofs());
+    for (const auto &[dof, pin] : found)
+      {
+        pinned.push_back(pin);
+        pinned_dofs.insert(dof);
+        constraint_set.add_line(dof);
+      }
+    for (const types::global_dof_index dof : clamped_angle_dofs)
+      constraint_set.add_line(dof);
+    for (const types::global_dof_index dof : discretization.unused_dofs())
+      constraint_set.add_line(dof);
+    constraint_set.close();
+
+    // Every named pinned group must pin something somewhere.
+    if ((!parameters.constraints.pinned_groups.empty() ||
+         !parameters.constraints.clamped_groups.empty()) &&
+        Utilities::MPI::sum(static_cast<unsigned int>(pinned.size()),
+                            discretization.get_communicator()) == 0)
+      throw InputError(parameter_file,
+                       "Constraints/Pinned groups",
+                       "the named pinned and clamped groups contain no mesh vertex");
+
+    parse_vector_function(pinned_displacement,
+                          parameters.constraints.pinned_displacement,
+                          /*time_dependent=*/true,
+                          parameter_file,
+                          "Constraints/Pinned displacement");
+    parse_vector_function(initial_displacement,
+                          parameters.time.initial_displacement,
+                          /*time_dependent=*/false,
+                          parameter_file,
+                          "Time/Initial displacement");
+    parse_vector_function(initial_velocity,
+                          parameters.time.initial_velocity,
+                          /*time_dependent=*/false,
+                          parameter_file,
+                          "Time/Initial velocity");
+  }
+
+
+  unsigned int
+  BoundaryConditions::n_pinned_dofs() const
+  {
+    unsigned int n_owned = 0;
+    for (const PinnedDof &pin : pinned)
+      if (discretization.owned_dofs().is_element(pin.dof))
+        ++n_owned;
+    return Utilities::MPI::sum(n_owned, discretization.get_communicator());
+  }
+
+
+  void
+  BoundaryConditions::initial_state(VectorType &u, VectorType &v) const
+  {
+    u                     = 0.;
+    v                     = 0.;
+    const IndexSet &owned = discretization.owned_dofs();
+    for (const auto &element : discretization.elements())
+      for (unsigned int vertex = 0; vertex < 3; ++vertex)
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            const types::global_dof_index dof = element.dofs[3 * vertex + c];
+            if (!owned.is_element(dof))
+              continue;
+            u[dof] = initial_displacement.value(element.reference[vertex], c);
+            v[dof] = initial_velocity.value(element.reference[vertex], c);
+          }
+    u.compress(VectorOperation::insert);
+    v.compress(VectorOperation::insert);
+    apply_pinned_displacement(0., u);
+  }
+
+
+  void
+  BoundaryConditions::apply_pinned_displacement(const double time, VectorType &u) const
+  {
+    pinned_displacement.set_time(time);
+    for (const PinnedDof &pin : pinned)
+      if (discretization.owned_dofs().is_element(pin.dof))
+        u[pin.dof] = pinned_displacement.value(pin.reference, pin.component);
+    u.compress(VectorOperation::insert);
+  }
+
+
+  void
+  parse_vector_function(FunctionParser<3> &function,
+                        const std::string &expressions,
+                        const bool         time_dependent,
+                        const std::string &parameter_file,
+                        const std::string &entry)
+  {
+    // deal.II parses on the first evaluation (and prints the parser's complaint to
+    // std::cerr): evaluate once here, quietly, so that a bad expression is a one-line
+    // input error now rather than an abort mid-run.
+    std::ostringstream parser_messages;
+    std::streambuf    *cerr_buffer = std::cerr.rdbuf(parser_messages.rdbuf());
+    try
+      {
+        function.initialize(time_dependent ? "x,y,z,t" : "x,y,z",
+                            expressions,
+                            {{"pi", numbers::PI}},
+                            time_dependent);
+        for (unsigned int c = 0; c < 3; ++c)
+          function.value(Point<3>(), c);
+        std::cerr.rdbuf(cerr_buffer);
+      }
+    catch (const std::exception &)
+      {
+        std::cerr.rdbuf(cerr_buffer);
+        throw InputError(parameter_file,
+                         entry,
+                         "cannot parse '" + expressions +
+                           "' as three expressions in x, y, z" +
+                           (time_dependent ? ", t" : ""));
+      }
+  }
+} // namespace clothsim

@@ -1,0 +1,92 @@
+#pragma once
+
+// The boundary conditions and initial state of a scene: pinned groups (points, lines or
+// surfaces of the mesh; any of x, y, z) with their prescribed displacement (an expression
+// of x, y, z, t), clamped boundary lines (every component pinned and the edge's director
+// angle held), and the initial displacement and velocity (expressions of x, y, z).
+// Pinned and clamped dofs, and the unused angle dofs of the discretization, become
+// homogeneous constraints: Newton's updates there are zero, and the prescribed values
+// are set before each step.
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/lac/affine_constraints.h>
+
+#include "io/parameters.h"
+#include "mesh/discretization.h"
+#include "mesh/gmsh_reader.h"
+
+#include <set>
+#include <string>
+#include <vector>
+
+namespace clothsim
+{
+  class BoundaryConditions
+  {
+  public:
+    // Resolves the groups of `parameters` on the mesh and parses the expressions. Throws
+    // InputError (naming `parameter_file`) for unknown or empty groups and bad
+    // expressions.
+    BoundaryConditions(const mesh::Discretization &discretization,
+                       const Parameters           &parameters,
+                       const std::string          &parameter_file,
+                       const mesh::MeshGroups     &groups);
+
+    const AffineConstraints<double> &
+    constraints() const
+    {
+      return constraint_set;
+    }
+    // Angle dofs of the clamped edges (locally relevant).
+    const std::set<types::global_dof_index> &
+    clamped_angles() const
+    {
+      return clamped_angle_dofs;
+    }
+    // Pinned displacement dofs over all ranks.
+    unsigned int
+    n_pinned_dofs() const;
+    // Whether `dof` (locally relevant) is a pinned displacement dof.
+    bool
+    is_pinned(const types::global_dof_index dof) const
+    {
+      return pinned_dofs.count(dof) > 0;
+    }
+
+    // The state at t = 0 (owned vectors): the initial displacement and velocity at every
+    // vertex (angles zero), pinned dofs at their prescribed position.
+    void
+    initial_state(VectorType &u, VectorType &v) const;
+
+    // Sets the pinned entries of `u` (owned) to the prescribed displacement at time t.
+    void
+    apply_pinned_displacement(const double time, VectorType &u) const;
+
+  private:
+    // A pinned dof (locally relevant): dof, component, reference position of its vertex.
+    struct PinnedDof
+    {
+      types::global_dof_index dof;
+      unsigned int            component;
+      Point<3>                reference;
+    };
+
+    const mesh::Discretization       &discretization;
+    AffineConstraints<double>         constraint_set;
+    std::vector<PinnedDof>            pinned;
+    std::set<types::global_dof_index> pinned_dofs;
+    std::set<types::global_dof_index> clamped_angle_dofs;
+    mutable FunctionParser<3>         pinned_displacement;
+    FunctionParser<3>                 initial_displacement;
+    FunctionParser<3>                 initial_velocity;
+  };
+
+  // Parses 'fx; fy; fz' (in x, y, z and, if `time_dependent`, t) into `function` and
+  // evaluates it once; InputError naming `parameter_file` and `entry` if it fails.
+  void
+  parse_vector_function(FunctionParser<3> &function,
+                        const std::string &expressions,
+                        const bool         time_dependent,
+                        const std::string &parameter_file,
+                        const std::string &entry);
+} // namespace clothsim

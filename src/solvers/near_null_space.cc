@@ -1,0 +1,68 @@
+#include "solvers/near_null_space.h"
+
+#include <deal.II/base/mpi.h>
+
+namespace clothsim
+{
+  NearNullSpace
+  make_near_null_space(const std::vector<ReferenceTriangle> &triangles,
+                       const IndexSet                       &owned_dofs,
+                       const IndexSet                       &relevant_dofs,
+                       const bool                            other_unknowns,
+                       const MPI_Comm                        communicator)
+  {
+    Tensor<1, 3> moment, normal_sum;
+    double       area = 0.;
+    for (const ReferenceTriangle &triangle : triangles)
+      {
+        const auto &X = triangle.vertices;
+        for (unsigned int v = 0; v < 3; ++v)
+          moment += (triangle.area / 3.) * X[v];
+        normal_sum += 0.5 * cross_product_3d(X[1] - X[0], X[2] - X[0]);
+        area += triangle.area;
+      }
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        moment[d]     = Utilities::MPI::sum(moment[d], communicator);
+        normal_sum[d] = Utilities::MPI::sum(normal_sum[d], communicator);
+      }
+    area                        = Utilities::MPI::sum(area, communicator);
+    const Tensor<1, 3> centroid = moment / area;
+    // A sheet that is far from planar has no single in-plane rotation.
+    const bool         nearly_planar = normal_sum.norm() > 0.9 * area;
+    const Tensor<1, 3> normal        = normal_sum / normal_sum.norm();
+
+    const unsigned int               n_owned = owned_dofs.n_elements();
+    std::vector<std::vector<double>> modes(nearly_planar ? 4 : 3,
+                                           std::vector<double>(n_owned, 0.));
+    for (const ReferenceTriangle &triangle : triangles)
+      for (unsigned int v = 0; v < 3; ++v)
+        {
+          const Tensor<1, 3> rotation =
+            cross_product_3d(normal, triangle.vertices[v] - centroid);
+          for (unsigned int c = 0; c < 3; ++c)
+            if (owned_dofs.is_element(triangle.dofs[3 * v + c]))
+              {
+                const unsigned int i =
+                  owned_dofs.index_within_set(triangle.dofs[3 * v + c]);
+                modes[c][i] = 1.;
+                if (nearly_planar)
+                  modes[3][i] = rotation[c];
+              }
+        }
+    NearNullSpace space{modes, 3u, IndexSet(), IndexSet(), IndexSet()};
+    if (other_unknowns)
+      {
+        // Displacements and other unknowns interleave: AMG gets the displacement block.
+        space.displacement_dofs = IndexSet(owned_dofs.size());
+        for (const ReferenceTriangle &triangle : triangles)
+          for (const types::global_dof_index dof : triangle.dofs)
+            if (owned_dofs.is_element(dof))
+              space.displacement_dofs.add_index(dof);
+        space.displacement_dofs.compress();
+        space.owned_dofs    = owned_dofs;
+        space.relevant_dofs = relevant_dofs;
+      }
+    return space;
+  }
+} // namespace clothsim

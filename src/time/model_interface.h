@@ -1,0 +1,113 @@
+#pragma once
+
+// What the time integrators need of a model, and all they know of it: vectors of its
+// layout, the step's incremental potential (value, gradient, Hessian; physics/term.h),
+// the pins' prescribed motion and the initial state, hooks before and after a step, the
+// energy report, the state checks, and the fields to write. scene/ implements it.
+
+#include <deal.II/lac/affine_constraints.h>
+
+#include "io/vtu_writer.h"
+#include "physics/term.h"
+#include "solvers/linear_solver.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace clothsim
+{
+  // Energies of a state for statistics.csv: by kind, and one value per reported column
+  // (ModelInterface::energy_columns()), J.
+  struct EnergyReport
+  {
+    double              kinetic   = 0.;
+    double              elastic   = 0.;
+    double              potential = 0.;
+    std::vector<double> columns;
+  };
+
+  class ModelInterface
+  {
+  public:
+    virtual ~ModelInterface() = default;
+
+    virtual MPI_Comm
+    get_communicator() const = 0;
+    virtual const IndexSet &
+    owned_dofs() const = 0;
+    // The owned displacement dofs (no director angles): the error estimate's norm.
+    virtual const IndexSet &
+    displacement_dofs() const = 0;
+    // Homogeneous constraints on pinned and clamped dofs (Newton updates there are 0).
+    virtual const AffineConstraints<double> &
+    get_constraints() const = 0;
+    virtual void
+    initialize_owned(VectorType &vector) const = 0;
+    virtual void
+    initialize_ghosted(VectorType &vector) const = 0;
+    virtual void
+    initialize_matrix(MatrixType &matrix) const = 0;
+    virtual NearNullSpace
+    near_null_space() const = 0;
+    // The lumped mass of every dof's vertex (owned, kg; zero on angle dofs).
+    virtual void
+    lumped_masses(VectorType &masses) const = 0;
+
+    // The state at t = 0 (owned vectors), pins at their prescribed position.
+    virtual void
+    initial_state(VectorType &u, VectorType &v) const = 0;
+    // Sets the pinned entries of `u` (owned) to the prescribed displacement at time t
+    // (the load factor in static mode).
+    virtual void
+    apply_pinned_displacement(const double time, VectorType &u) const = 0;
+
+    // Before a step from u_n (ghosted).
+    virtual void
+    prepare_step(const VectorType &u_n) = 0;
+    // Φ(u) of the step (u ghosted; returned, summed over ranks); if non-null, its
+    // gradient (owned, zero at constrained dofs) and Hessian.
+    virtual double
+    assemble(const VectorType &u,
+             const StepTerms  &step,
+             VectorType       *gradient,
+             MatrixType       *hessian) const = 0;
+    // After a converged step at u (ghosted); `u_owned` may change (director re-basing).
+    virtual void
+    commit_step(const VectorType &u, VectorType &u_owned) = 0;
+    // The work done against the dissipative terms over a step (see physics/model.h), J.
+    virtual double
+    dissipated_work(const VectorType &u,
+                    const StepTerms  &step,
+                    const VectorType &increment) const = 0;
+    virtual bool
+    has_dissipation() const = 0;
+
+    // Smallest and largest current/reference triangle area ratio at u (ghosted); NaN
+    // gives (-1, infinity).
+    virtual std::pair<double, double>
+    area_ratio_range(const VectorType &u) const = 0;
+
+    // Provot's strain limit after a dynamic step (u, v owned): whether the model has one,
+    // and the springs still beyond it and their largest strain after the sweeps.
+    virtual bool
+    has_strain_limit() const = 0;
+    virtual std::pair<types::global_dof_index, double>
+    limit_strain(VectorType &u, VectorType &v, const double dt) const = 0;
+
+    // The names of the model's terms, and the statistics.csv columns that report them
+    // beyond kinetic, elastic, potential and total energy.
+    virtual std::vector<std::string>
+    term_names() const = 0;
+    virtual std::vector<std::string>
+    energy_columns() const = 0;
+    // Energies at (u, v), ghosted; `dissipated`: the work done against the dissipative
+    // terms so far, J, reported in their column.
+    virtual EnergyReport
+    energies(const VectorType &u, const VectorType &v, const double dissipated) const = 0;
+
+    // The fields of an output frame at (u, v), ghosted.
+    virtual io::FrameData
+    output_fields(const VectorType &u, const VectorType &v) const = 0;
+  };
+} // namespace clothsim

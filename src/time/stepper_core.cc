@@ -1,0 +1,155 @@
+#include "time/stepper_core.h"
+
+#include <cmath>
+
+namespace clothsim
+{
+  std::pair<double, double>
+  StepTimes::since_last()
+  {
+    double assembly_total = 0., linear_total = 0.;
+    for (const auto &[section, seconds] :
+         timer.get_summary_data(TimerOutput::total_wall_time))
+      if (section.rfind("assemble", 0) == 0)
+        assembly_total += seconds;
+      else if (section == "linear solve" || section == "preconditioner setup")
+        linear_total += seconds;
+    const std::pair<double, double> step = {assembly_total - assembly,
+                                            linear_total - linear_solve};
+    assembly                             = assembly_total;
+    linear_solve                         = linear_total;
+    return step;
+  }
+
+
+  StepperCore::StepperCore(const Parameters   &parameters,
+                           ModelInterface     &model,
+                           OutputWriter       &output,
+                           ConditionalOStream &pcout,
+                           TimerOutput        &timer)
+    : parameters(parameters)
+    , model(model)
+    , output(output)
+    , pcout(pcout)
+    , timer(timer)
+  {
+    model.initialize_ghosted(u_ghosted);
+    model.initialize_ghosted(v_ghosted);
+  }
+
+
+  void
+  StepperCore::write_first_frame(const VectorType &u, const VectorType &v)
+  {
+    wall_clock.restart();
+    u_ghosted  = u;
+    v_ghosted  = v;
+    dissipated = 0.;
+    write_frame(0, 0.);
+    const EnergyReport energies = current_energies();
+    output.write_statistics({0,
+                             0.,
+                             0.,
+                             0,
+                             0,
+                             0.,
+                             0,
+                             energies.kinetic,
+                             energies.elastic,
+                             energies.potential,
+                             energies.columns,
+                             0.});
+  }
+
+
+  std::string
+  StepperCore::blow_up(const VectorType &u) const
+  {
+    const auto [smallest, largest] = model.area_ratio_range(u);
+    if (smallest < 0.)
+      return "NaN in the solution";
+    if (!(smallest > 1e-6))
+      return "a triangle collapsed (area ratio " + std::to_string(smallest) + ")";
+    if (!(largest < 100.))
+      return "a triangle grew " + std::to_string(largest) + " times its area";
+    return "";
+  }
+
+
+  void
+  StepperCore::limit_strain(const unsigned int step,
+                            VectorType        &u,
+                            VectorType        &v,
+                            const double       dt)
+  {
+    if (!model.has_strain_limit())
+      return;
+    TimerOutput::Scope scope(timer, "strain limit");
+    const auto [remaining, largest] = model.limit_strain(u, v, dt);
+    if (remaining > 0)
+      pcout << "step " << step << ": " << remaining
+            << " springs still beyond the strain limit (largest strain " << largest
+            << ") after " << parameters.mass_spring.strain_limit_iterations << " sweeps"
+            << std::endl;
+  }
+
+
+  void
+  StepperCore::add_dissipation(const VectorType &solved,
+                               const StepTerms  &terms,
+                               const VectorType &u_new,
+                               const VectorType &u_old)
+  {
+    if (!model.has_dissipation())
+      return;
+    TimerOutput::Scope scope(timer, "energy budget");
+    if (increment.size() == 0)
+      {
+        model.initialize_ghosted(increment);
+        model.initialize_ghosted(solved_ghosted);
+      }
+    VectorType difference(u_new);
+    difference -= u_old;
+    increment      = difference;
+    solved_ghosted = solved;
+    dissipated += model.dissipated_work(solved_ghosted, terms, increment);
+  }
+
+
+  void
+  StepperCore::record(const unsigned int  step,
+                      const double        time,
+                      const double        dt,
+                      const StepFigures  &figures,
+                      const EnergyReport &energies,
+                      StepTimes          &step_times)
+  {
+    const auto spent = step_times.since_last();
+    output.write_statistics({step,
+                             time,
+                             dt,
+                             figures.newton_iterations,
+                             figures.linear_iterations,
+                             figures.residual,
+                             figures.retries,
+                             energies.kinetic,
+                             energies.elastic,
+                             energies.potential,
+                             energies.columns,
+                             wall_clock.wall_time(),
+                             figures.rejected,
+                             figures.error_estimate,
+                             spent.first,
+                             spent.second});
+  }
+
+
+  void
+  StepperCore::write_frame(const unsigned int step, const double time)
+  {
+    TimerOutput::Scope scope(timer, "output");
+    output.write_state(step, time, u_ghosted, [this]() {
+      return model.output_fields(u_ghosted, v_ghosted);
+    });
+  }
+} // namespace clothsim

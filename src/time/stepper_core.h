@@ -1,0 +1,146 @@
+#pragma once
+
+// What the implicit and explicit steppers share: their set-up, the first frame, the
+// blow-up check, Provot's strain-limit stage and the record of an accepted step
+// (statistics.csv with the energy budget, the VTK frame and probes).
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/timer.h>
+
+#include "io/output_writer.h"
+#include "io/parameters.h"
+#include "time/model_interface.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace clothsim
+{
+  // The run cannot go on (Newton failed at the smallest step, NaN, collapsed triangles).
+  // Everything written before it stays.
+  class SimulationError : public std::runtime_error
+  {
+  public:
+    using std::runtime_error::runtime_error;
+  };
+
+  // Wall time spent in assembly ("assemble ..." sections) and in linear solves ("linear
+  // solve", "preconditioner setup") since the last call, from `timer`'s totals.
+  class StepTimes
+  {
+  public:
+    explicit StepTimes(const TimerOutput &timer)
+      : timer(timer)
+    {}
+
+    // {assembly, linear solve} seconds since the last call.
+    std::pair<double, double>
+    since_last();
+
+  private:
+    const TimerOutput &timer;
+    double             assembly = 0., linear_solve = 0.;
+  };
+
+  // Totals of a finished run.
+  struct RunSummary
+  {
+    unsigned int steps             = 0;
+    unsigned int newton_iterations = 0;
+    unsigned int linear_iterations = 0;
+    unsigned int retries           = 0;
+    unsigned int rejected          = 0; // steps rejected by the error control
+    unsigned int tangents          = 0; // tangents assembled
+    double estimated_error = 0.; // m: the accepted steps' local error estimates, summed
+  };
+
+  // The solver's figures of one accepted step, for its statistics row.
+  struct StepFigures
+  {
+    unsigned int newton_iterations = 0;
+    unsigned int linear_iterations = 0;
+    double       residual          = 0.; // N
+    unsigned int retries           = 0;
+    unsigned int rejected          = 0;
+    double       error_estimate    = 0.; // m
+  };
+
+  class StepperCore
+  {
+  public:
+    // The displacement and velocity at the end (ghosted).
+    const VectorType &
+    displacement() const
+    {
+      return u_ghosted;
+    }
+    const VectorType &
+    velocity() const
+    {
+      return v_ghosted;
+    }
+
+  protected:
+    StepperCore(const Parameters   &parameters,
+                ModelInterface     &model,
+                OutputWriter       &output,
+                ConditionalOStream &pcout,
+                TimerOutput        &timer);
+
+    // Frame 0 and the statistics' first row for the state (u, v) (owned).
+    void
+    write_first_frame(const VectorType &u, const VectorType &v);
+
+    // Why the state u (ghosted) is no cloth any more: a NaN, a collapsed or a
+    // hundredfold grown triangle; empty if it is one.
+    std::string
+    blow_up(const VectorType &u) const;
+
+    // Provot's strain limit after a dynamic step of size dt (u, v owned), if the model
+    // has one; says so when springs stay beyond it.
+    void
+    limit_strain(const unsigned int step, VectorType &u, VectorType &v, const double dt);
+
+    // Adds the work done against the dissipative terms over a step: their gradient at
+    // the solved iterate `solved` (ghosted) of the step `terms`, dotted with the step's
+    // displacement u_new - u_old (owned vectors).
+    void
+    add_dissipation(const VectorType &solved,
+                    const StepTerms  &terms,
+                    const VectorType &u_new,
+                    const VectorType &u_old);
+
+    // The energies at (u_ghosted, v_ghosted), with the dissipation so far.
+    EnergyReport
+    current_energies() const
+    {
+      return model.energies(u_ghosted, v_ghosted, dissipated);
+    }
+
+    // The statistics row of an accepted step with the energies of its state.
+    void
+    record(const unsigned int  step,
+           const double        time,
+           const double        dt,
+           const StepFigures  &figures,
+           const EnergyReport &energies,
+           StepTimes          &step_times);
+
+    // The VTK frame and probes at (u_ghosted, v_ghosted).
+    void
+    write_frame(const unsigned int step, const double time);
+
+    const Parameters   &parameters;
+    ModelInterface     &model;
+    OutputWriter       &output;
+    ConditionalOStream &pcout;
+    TimerOutput        &timer;
+    Timer               wall_clock;
+
+    VectorType u_ghosted, v_ghosted; // the current state
+    double     dissipated = 0.;      // J, work done against damping so far
+
+  private:
+    VectorType increment, solved_ghosted; // ghosted work vectors of add_dissipation
+  };
+} // namespace clothsim

@@ -1,0 +1,390 @@
+// Unit test of clothsim::io::write_vtu_frame: writes triangle pieces with point and cell
+// fields, reads them back with VTK's XML readers and checks the counts, the cell types,
+// the connectivity, every coordinate and field value (1e-15 relative), that cell fields
+// are cell data, and the TIME field data. On one rank: a 2 x 2 square (9 shared points,
+// 8 triangles), a 63 x 63 grid (4096 points: arrays of exactly 1 and 3 full compression
+// blocks, and coordinates in many blocks with a partial last one) and an empty piece. On
+// several ranks: a different piece per rank, read back through the .pvtu by rank 0. Both:
+// a directory that does not exist and a field of the wrong size (on the last rank only)
+// make every rank throw. With an argument, the files are kept in that directory.
+
+#include "io/vtu_writer.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPUnstructuredGridReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace clothsim::io;
+
+namespace
+{
+  unsigned int n_checks   = 0;
+  unsigned int n_failures = 0;
+  unsigned int this_rank  = 0;
+
+  // Rank 0 prints every check, other ranks only their failures.
+  void
+  check(const bool ok, const std::string &what)
+  {
+    ++n_checks;
+    if (!ok)
+      ++n_failures;
+    if (this_rank == 0 || !ok)
+      std::cout << (ok ? "  ok    " : "  FAIL  ")
+                << (this_rank == 0 ? "" : "[rank " + std::to_string(this_rank) + "] ")
+                << what << std::endl;
+  }
+
+  template <typename T>
+  void
+  check_equal(const std::string &what, const T &value, const T &expected)
+  {
+    std::ostringstream text;
+    text << std::setprecision(17) << what << " = " << value << " (expected " << expected
+         << ")";
+    check(value == expected, text.str());
+  }
+
+  // Relative difference of a read value from the written one.
+  double
+  relative_difference(const double value, const double expected)
+  {
+    const double scale = std::max(std::abs(value), std::abs(expected));
+    return scale == 0. ? 0. : std::abs(value - expected) / scale;
+  }
+
+  struct Frame
+  {
+    SurfacePiece piece;
+    FrameData    data;
+  };
+
+  // An nx x ny grid of 0.5 m squares, two triangles each, starting at x = x0, with
+  // irrational coordinates and field values that differ per vertex, triangle and `seed`.
+  Frame
+  make_frame(const unsigned int nx,
+             const unsigned int ny,
+             const double       x0,
+             const unsigned int seed)
+  {
+    Frame frame;
+    for (unsigned int j = 0; j <= ny; ++j)
+      for (unsigned int i = 0; i <= nx; ++i)
+        frame.piece.points.push_back(
+          {{x0 + 0.5 * i, 0.5 * j, 0.1 * std::sin(i + 2. * j + seed)}});
+    for (unsigned int j = 0; j < ny; ++j)
+      for (unsigned int i = 0; i < nx; ++i)
+        {
+          const unsigned int v0 = j * (nx + 1) + i, v1 = v0 + 1, v2 = v0 + nx + 1,
+                             v3 = v2 + 1;
+          frame.piece.triangles.push_back({{v0, v1, v3}});
+          frame.piece.triangles.push_back({{v0, v3, v2}});
+        }
+    const std::size_t n_points = frame.piece.points.size();
+    const std::size_t n_cells  = frame.piece.triangles.size();
+
+    Field displacement{"displacement", 3, {}}, speed{"speed", 1, {}};
+    for (std::size_t k = 0; k < 3 * n_points; ++k)
+      displacement.values.push_back(1e-3 * std::sin(0.7 * k + seed));
+    for (std::size_t k = 0; k < n_points; ++k)
+      speed.values.push_back(std::exp(-0.01 * k) / (3. + seed));
+    Field green_strain{"green_strain", 1, {}}, stress{"membrane_stress", 3, {}};
+    for (std::size_t c = 0; c < n_cells; ++c)
+      green_strain.values.push_back(1e-4 * (1. + c) + 1e-7 * seed / 3.);
+    for (std::size_t k = 0; k < 3 * n_cells; ++k)
+      stress.values.push_back(1e3 * std::cos(0.3 * k + seed));
+    frame.data.point_fields = {displacement, speed};
+    frame.data.cell_fields  = {green_strain, stress};
+    return frame;
+  }
+
+  // Compares one field of the written pieces (concatenated) with the array read back.
+  void
+  check_array(vtkFieldData      *read,
+              vtkFieldData      *other,
+              const std::string &kind,
+              const Field       &field,
+              const std::string &what)
+  {
+    vtkDataArray *array = read->GetArray(field.name.c_str());
+    check(array != nullptr, what + ": " + kind + " array '" + field.name + "' present");
+    check(other->GetArray(field.name.c_str()) == nullptr,
+          what + ": '" + field.name + "' is " + kind + " data only");
+    if (array == nullptr)
+      return;
+    check_equal(what + ": '" + field.name + "' components",
+                array->GetNumberOfComponents(),
+                static_cast<int>(field.n_components));
+    check_equal(what + ": '" + field.name + "' tuples",
+                static_cast<std::size_t>(array->GetNumberOfTuples()),
+                field.values.size() / field.n_components);
+    check(array->GetDataType() == VTK_DOUBLE, what + ": '" + field.name + "' is Float64");
+    if (array->GetNumberOfValues() != static_cast<vtkIdType>(field.values.size()))
+      return;
+    double largest = 0.;
+    for (std::size_t k = 0; k < field.values.size(); ++k)
+      largest = std::max(largest,
+                         relative_difference(array->GetComponent(k / field.n_components,
+                                                                 k % field.n_components),
+                                             field.values[k]));
+    std::ostringstream text;
+    text << what << ": '" << field.name << "' " << field.values.size()
+         << " values, largest relative difference " << largest << " (expected <= 1e-15)";
+    check(largest <= 1e-15, text.str());
+  }
+
+  // Checks a grid read back against the pieces written, concatenated in rank order.
+  void
+  check_grid(vtkUnstructuredGrid      *grid,
+             const std::vector<Frame> &frames,
+             const std::string        &what)
+  {
+    Frame all = frames[0];
+    for (std::size_t f = 1; f < frames.size(); ++f)
+      {
+        const unsigned int shift = all.piece.points.size();
+        const Frame       &frame = frames[f];
+        all.piece.points.insert(all.piece.points.end(),
+                                frame.piece.points.begin(),
+                                frame.piece.points.end());
+        for (auto triangle : frame.piece.triangles)
+          {
+            for (unsigned int &vertex : triangle)
+              vertex += shift;
+            all.piece.triangles.push_back(triangle);
+          }
+        for (std::size_t i = 0; i < all.data.point_fields.size(); ++i)
+          all.data.point_fields[i].values.insert(
+            all.data.point_fields[i].values.end(),
+            frame.data.point_fields[i].values.begin(),
+            frame.data.point_fields[i].values.end());
+        for (std::size_t i = 0; i < all.data.cell_fields.size(); ++i)
+          all.data.cell_fields[i].values.insert(all.data.cell_fields[i].values.end(),
+                                                frame.data.cell_fields[i].values.begin(),
+                                                frame.data.cell_fields[i].values.end());
+      }
+    const auto n_points = static_cast<vtkIdType>(all.piece.points.size());
+    const auto n_cells  = static_cast<vtkIdType>(all.piece.triangles.size());
+    check_equal(what + ": points", grid->GetNumberOfPoints(), n_points);
+    check_equal(what + ": cells", grid->GetNumberOfCells(), n_cells);
+    if (grid->GetNumberOfPoints() != n_points || grid->GetNumberOfCells() != n_cells)
+      return;
+
+    vtkIdType         n_triangles = 0, n_wrong_vertices = 0;
+    vtkNew<vtkIdList> ids;
+    for (vtkIdType c = 0; c < n_cells; ++c)
+      {
+        n_triangles += grid->GetCellType(c) == VTK_TRIANGLE ? 1 : 0;
+        grid->GetCellPoints(c, ids);
+        for (unsigned int v = 0; v < 3; ++v)
+          n_wrong_vertices +=
+            ids->GetNumberOfIds() != 3 || ids->GetId(v) != all.piece.triangles[c][v];
+      }
+    check_equal(what + ": cells of type VTK_TRIANGLE", n_triangles, n_cells);
+    check_equal(what + ": cell vertices differing from those written",
+                n_wrong_vertices,
+                vtkIdType(0));
+
+    double largest = 0.;
+    for (vtkIdType p = 0; p < n_points; ++p)
+      for (unsigned int d = 0; d < 3; ++d)
+        largest =
+          std::max(largest,
+                   relative_difference(grid->GetPoint(p)[d], all.piece.points[p][d]));
+    check(grid->GetPoints()->GetDataType() == VTK_DOUBLE, what + ": points are Float64");
+    std::ostringstream text;
+    text << what << ": point coordinates, largest relative difference " << largest
+         << " (expected <= 1e-15)";
+    check(largest <= 1e-15, text.str());
+
+    for (const Field &field : all.data.point_fields)
+      check_array(grid->GetPointData(), grid->GetCellData(), "point", field, what);
+    for (const Field &field : all.data.cell_fields)
+      check_array(grid->GetCellData(), grid->GetPointData(), "cell", field, what);
+  }
+
+  // TIME as read back, NaN if there is none.
+  double
+  read_time(vtkUnstructuredGrid *grid)
+  {
+    vtkDataArray *time = grid->GetFieldData()->GetArray("TIME");
+    return time != nullptr && time->GetNumberOfTuples() == 1 ? time->GetComponent(0, 0)
+                                                             : std::nan("");
+  }
+
+  vtkUnstructuredGrid *
+  read_vtu(vtkXMLUnstructuredGridReader *reader, const std::string &path)
+  {
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    return reader->GetOutput();
+  }
+
+  // Expects write_vtu_frame to throw on every rank, with `text` in the message.
+  void
+  check_throws(const std::string &what,
+               const std::string &directory,
+               const Frame       &frame,
+               const std::string &text)
+  {
+    std::string message;
+    try
+      {
+        write_vtu_frame(directory, "bad", frame.piece, frame.data, 0., MPI_COMM_WORLD);
+      }
+    catch (const std::runtime_error &e)
+      {
+        message = e.what();
+      }
+    check(message.find(text) != std::string::npos,
+          what + ": throws with '" + text + "' in the message: '" + message + "'");
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+  this_rank                  = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  const double time          = 1.2345678901234567;
+
+  const bool  keep = argc > 1;
+  std::string directory;
+  if (this_rank == 0)
+    {
+      if (keep)
+        directory = argv[1];
+      else
+        {
+          std::string name =
+            (std::filesystem::temp_directory_path() / "clothsim-vtu-XXXXXX").string();
+          if (mkdtemp(name.data()) == nullptr)
+            throw std::runtime_error("cannot create a temporary directory");
+          directory = name;
+        }
+      std::filesystem::create_directories(directory);
+      std::cout << "writing into " << directory << " on " << n_ranks << " rank(s)\n";
+    }
+  directory = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, directory, 0);
+
+  if (n_ranks == 1)
+    {
+      // The 2 x 2 square, the 63 x 63 grid and an empty piece, each read back.
+      const std::vector<std::pair<std::string, Frame>> cases = {
+        {"square", make_frame(2, 2, 0., 0)},
+        {"grid", make_frame(63, 63, 0., 1)},
+        {"empty", make_frame(0, 0, 0., 2)}};
+      for (const auto &[stem, frame] : cases)
+        {
+          Frame written = frame;
+          if (stem == "empty")
+            {
+              written.piece = SurfacePiece();
+              for (Field &field : written.data.point_fields)
+                field.values.clear();
+              for (Field &field : written.data.cell_fields)
+                field.values.clear();
+            }
+          const std::string record = write_vtu_frame(
+            directory, stem, written.piece, written.data, time, MPI_COMM_WORLD);
+          check_equal(stem + ": record", record, stem + ".vtu");
+          vtkNew<vtkXMLUnstructuredGridReader> reader;
+          vtkUnstructuredGrid *grid = read_vtu(reader, directory + "/" + record);
+          check_grid(grid, {written}, stem);
+          check_equal(stem + ": TIME", read_time(grid), time);
+        }
+    }
+  else
+    {
+      // Rank r writes a (2 + r) x 2 grid shifted by 10 r m in x.
+      const auto frame_of = [](const unsigned int r) {
+        return make_frame(2 + r, 2, 10. * r, r);
+      };
+      const Frame       mine = frame_of(this_rank);
+      const std::string record =
+        write_vtu_frame(directory, "pieces", mine.piece, mine.data, time, MPI_COMM_WORLD);
+      check_equal("pieces: record", record, std::string("pieces.pvtu"));
+      if (this_rank == 0)
+        {
+          std::vector<Frame> frames;
+          std::size_t        points_sum = 0, cells_sum = 0;
+          for (unsigned int r = 0; r < n_ranks; ++r)
+            {
+              frames.push_back(frame_of(r));
+              points_sum += frames.back().piece.points.size();
+              cells_sum += frames.back().piece.triangles.size();
+            }
+          std::cout << "  " << n_ranks << " pieces: " << points_sum << " points, "
+                    << cells_sum << " triangles in all\n";
+          vtkNew<vtkXMLPUnstructuredGridReader> reader;
+          reader->SetFileName((directory + "/" + record).c_str());
+          reader->Update();
+          check_grid(reader->GetOutput(), frames, "pvtu");
+          check_equal("pvtu: TIME", read_time(reader->GetOutput()), time);
+
+          // Every piece on its own, with its TIME.
+          for (unsigned int r = 0; r < n_ranks; ++r)
+            {
+              const std::string piece =
+                "pieces." + dealii::Utilities::int_to_string(r, 4) + ".vtu";
+              vtkNew<vtkXMLUnstructuredGridReader> piece_reader;
+              vtkUnstructuredGrid *grid = read_vtu(piece_reader, directory + "/" + piece);
+              check_grid(grid, {frames[r]}, piece);
+              check_equal(piece + ": TIME", read_time(grid), time);
+            }
+        }
+    }
+
+  // Errors: a missing directory, and a field of the wrong size on the last rank only.
+  const Frame frame = make_frame(2, 2, 0., 0);
+  check_throws("missing directory",
+               directory + "/no-such-directory",
+               frame,
+               directory + "/no-such-directory/bad.");
+  Frame wrong = frame;
+  if (this_rank == n_ranks - 1)
+    wrong.data.cell_fields[0].values.pop_back();
+  check_throws("wrong field size",
+               directory,
+               wrong,
+               this_rank == n_ranks - 1 ? "'green_strain' has 7 values, expected 8"
+                                        : "another rank");
+
+  const unsigned int total_checks = dealii::Utilities::MPI::sum(n_checks, MPI_COMM_WORLD);
+  const unsigned int total_failures =
+    dealii::Utilities::MPI::sum(n_failures, MPI_COMM_WORLD);
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (this_rank == 0)
+    {
+      if (!keep)
+        std::filesystem::remove_all(directory);
+      std::cout << total_checks - total_failures << " of " << total_checks
+                << " checks passed on " << n_ranks << " rank(s)\n"
+                << (total_failures == 0 ? "PASSED" : "FAILED") << std::endl;
+    }
+  return total_failures == 0 ? 0 : 1;
+}
