@@ -1,0 +1,145 @@
+// Sections "Loads" and "Constraints": external forces, pinned and clamped groups.
+
+#include "io/parameters.h"
+
+#include <deal.II/base/utilities.h>
+
+#include "io/input_error.h"
+#include "io/parameters_detail.h"
+
+namespace clothsim
+{
+  using detail::vector_entry;
+
+
+  namespace
+  {
+    // 'name: fx, fy, fz; name2: ...' (already matched by the entry's Patterns::Map).
+    std::vector<GroupLoad>
+    group_loads(const std::string &text)
+    {
+      std::vector<GroupLoad> loads;
+      for (const std::string &item : Utilities::split_string_list(text, ';'))
+        {
+          const auto name_value = Utilities::split_string_list(item, ':');
+          loads.push_back({name_value[0], vector_entry(name_value[1])});
+        }
+      return loads;
+    }
+  } // namespace
+
+
+  void
+  LoadParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Loads");
+    prm.declare_entry("Gravity",
+                      "0, 0, -9.81",
+                      Patterns::List(Patterns::Double(-1e6, 1e6), 3, 3, ","),
+                      "Gravitational acceleration g (x, y, z) in m/s².");
+    const auto group_vectors =
+      Patterns::Map(Patterns::Anything(),
+                    Patterns::List(Patterns::Double(), 3, 3, ","),
+                    0,
+                    1000,
+                    ";",
+                    ":");
+    prm.declare_entry(
+      "Point forces",
+      "",
+      group_vectors,
+      "Forces in N on every vertex of gmsh point groups: 'name: fx, fy, fz; "
+      "name2: ...'. Dead loads; scaled by the load factor in static mode.");
+    prm.declare_entry(
+      "Line forces",
+      "",
+      group_vectors,
+      "Forces in N per m of reference length along gmsh boundary line groups: "
+      "'name: qx, qy, qz; ...', lumped onto the edges' vertices. Dead loads; "
+      "scaled by the load factor in static mode.");
+    prm.declare_entry(
+      "Pressure",
+      "0",
+      Patterns::Double(),
+      "Pressure in Pa on the whole surface, along the current normal (x1 - x0) x "
+      "(x2 - x0) of each triangle (a follower load). Exact where the surface is "
+      "closed or its boundary is held; on free edges it acts through the potential "
+      "-p V (V: volume of the cones from the reference centroid to the triangles), "
+      "see physics/pressure.h. Scaled by the load factor in static mode.");
+    prm.leave_subsection();
+  }
+
+  void
+  LoadParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Loads");
+    const auto values =
+      Utilities::string_to_double(Utilities::split_string_list(prm.get("Gravity"), ','));
+    for (unsigned int d = 0; d < 3; ++d)
+      gravity[d] = values[d];
+    point_forces = group_loads(prm.get("Point forces"));
+    line_forces  = group_loads(prm.get("Line forces"));
+    pressure     = prm.get_double("Pressure");
+    prm.leave_subsection();
+  }
+
+
+  void
+  ConstraintParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Constraints");
+    prm.declare_entry(
+      "Pinned groups",
+      "",
+      Patterns::List(Patterns::Anything(), 0, 100, ";"),
+      "gmsh physical groups (points, boundary lines or surfaces) whose vertices "
+      "follow 'Pinned displacement', separated by ';'. Each is 'name' (all "
+      "components) or 'name: components' with components from x, y, z, e.g. "
+      "'pinned' or 'left: x; corner: xy; cloth: z'.");
+    prm.declare_entry(
+      "Pinned displacement",
+      "0; 0; 0",
+      Patterns::List(Patterns::Anything(), 3, 3, ";"),
+      "Displacement of pinned vertices in m: three expressions 'ux; uy; uz' in "
+      "the reference coordinates x, y, z (m) and time t (s), e.g. "
+      "'0; 0; 0.1*sin(2*pi*t)'. In static mode t is the load factor 0..1.");
+    prm.declare_entry(
+      "Clamped groups",
+      "",
+      Patterns::List(Patterns::Anything(), 0, 100, ";"),
+      "gmsh boundary line groups that are clamped, separated by ';': their "
+      "vertices are fixed and the shell's director along them keeps its rest "
+      "direction (rotation about the edge held). Needs 'Material/Bending'. A line "
+      "group in 'Pinned groups' instead is simply supported (rotation free).");
+    prm.leave_subsection();
+  }
+
+  void
+  ConstraintParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Constraints");
+    pinned_groups.clear();
+    for (const std::string &item :
+         Utilities::split_string_list(prm.get("Pinned groups"), ';'))
+      {
+        const auto  parts = Utilities::split_string_list(item, ':');
+        PinnedGroup group{parts[0], {{true, true, true}}};
+        if (parts.size() > 2 || parts[0].empty() ||
+            (parts.size() == 2 &&
+             parts[1].find_first_not_of("xyz") != std::string::npos) ||
+            (parts.size() == 2 && parts[1].empty()))
+          throw InputError("",
+                           "Constraints/Pinned groups",
+                           "'" + item +
+                             "' is not 'name' or 'name: components' (components "
+                             "from x, y, z)");
+        if (parts.size() == 2)
+          for (unsigned int d = 0; d < 3; ++d)
+            group.components[d] = parts[1].find("xyz"[d]) != std::string::npos;
+        pinned_groups.push_back(group);
+      }
+    pinned_displacement = prm.get("Pinned displacement");
+    clamped_groups      = Utilities::split_string_list(prm.get("Clamped groups"), ';');
+    prm.leave_subsection();
+  }
+} // namespace clothsim

@@ -1,0 +1,106 @@
+// Section "Output": VTK frames, probes and their closed-form references, progress line.
+
+#include "io/parameters.h"
+
+#include <deal.II/base/utilities.h>
+
+#include "io/input_error.h"
+
+#include <algorithm>
+
+namespace clothsim
+{
+  namespace
+  {
+    // 'name: a, b, c; name2: ...' (Output/Probes, Output/Probe references): the pattern
+    // and the parsed entries.
+    Patterns::Map
+    named_triples_pattern()
+    {
+      return Patterns::Map(Patterns::Anything(),
+                           Patterns::List(Patterns::Double(), 3, 3, ","),
+                           0,
+                           1000,
+                           ";",
+                           ":");
+    }
+
+    std::vector<std::pair<std::string, Tensor<1, 3>>>
+    parse_named_triples(const std::string &text)
+    {
+      std::vector<std::pair<std::string, Tensor<1, 3>>> entries;
+      for (const std::string &item : Utilities::split_string_list(text, ';'))
+        {
+          const auto name_value = Utilities::split_string_list(item, ':');
+          const auto v =
+            Utilities::string_to_double(Utilities::split_string_list(name_value[1], ','));
+          entries.emplace_back(name_value[0], Tensor<1, 3>({v[0], v[1], v[2]}));
+        }
+      return entries;
+    }
+  } // namespace
+
+
+  void
+  OutputParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    prm.declare_entry(
+      "Output interval",
+      "0.0333333333333333",
+      Patterns::Double(0., 1e9),
+      "Simulated time in s between VTK frames and probe rows (0: every step). "
+      "The first and last states are always written.");
+    prm.declare_entry("Write VTK",
+                      "true",
+                      Patterns::Bool(),
+                      "Write solution.pvd and its frames.");
+    prm.declare_entry(
+      "Probes",
+      "",
+      named_triples_pattern(),
+      "Named reference points 'name: X, Y, Z; name2: X, Y, Z' (m). Each snaps to "
+      "the nearest mesh vertex; probes.csv records its reference position and "
+      "displacement.");
+    prm.declare_entry(
+      "Probe references",
+      "",
+      named_triples_pattern(),
+      "Closed-form displacements 'probe: ux, uy, uz; ...' (m) of named probes at "
+      "the end of the run (static mode: at full load), e.g. an elastica's tip. "
+      "Convergence studies (clothsim --convergence) measure the probes' errors "
+      "against them; runs ignore them.");
+    prm.declare_entry(
+      "Progress",
+      "auto",
+      Patterns::Selection("auto|on|off"),
+      "One updating progress line with ETA: 'auto' shows it on a terminal only.");
+    prm.leave_subsection();
+  }
+
+  void
+  OutputParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    interval  = prm.get_double("Output interval");
+    write_vtk = prm.get_bool("Write VTK");
+    probes.clear();
+    for (const auto &[name, X] : parse_named_triples(prm.get("Probes")))
+      probes.push_back({name, Point<3>(X), false, {}});
+    for (const auto &[name, u] : parse_named_triples(prm.get("Probe references")))
+      {
+        const auto probe =
+          std::find_if(probes.begin(), probes.end(), [&](const Probe &candidate) {
+            return candidate.name == name;
+          });
+        if (probe == probes.end())
+          throw InputError("",
+                           "Output/Probe references",
+                           "no probe named '" + name + "' in 'Output/Probes'");
+        probe->has_reference          = true;
+        probe->reference_displacement = u;
+      }
+    progress = prm.get("Progress");
+    prm.leave_subsection();
+  }
+} // namespace clothsim

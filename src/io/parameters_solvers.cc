@@ -1,0 +1,199 @@
+// Sections "Nonlinear solver" (Newton variants, tolerances, tangent) and "Linear
+// solver" (Krylov method or direct solver, preconditioner).
+
+#include "io/parameters.h"
+
+namespace clothsim
+{
+  namespace
+  {
+    const char *const solver_methods = "cg|gmres|direct";
+  } // namespace
+
+
+  void
+  NonlinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    prm.declare_entry(
+      "Method",
+      "newton",
+      Patterns::Selection("newton|single step|inexact newton|modified newton"),
+      "'newton': Newton iterations with line search until the tolerances below "
+      "hold, each linear solve to 'Linear solver/Relative tolerance'. "
+      "'single step': one linearised Newton step per time step, taken in "
+      "full and accepted without a convergence test (Baraff & Witkin 1998): "
+      "cheap, but the step's equations are not solved (measure the error against "
+      "'newton'). Static mode needs a method that converges. "
+      "'inexact newton': as 'newton', but each linear solve stops at the "
+      "Eisenstat-Walker forcing term eta_k = 0.9 (|F_k|/|F_k-1|)^1.5 (their "
+      "choice 2, safeguarded; between the linear solver's tolerance and "
+      "'Forcing term maximum'): loose far from the solution, tight near it; needs "
+      "an iterative linear solver. 'modified newton': a tangent and its "
+      "preconditioner (or factorisation) serve up to 'Jacobian reuse' Newton "
+      "iterations, across time steps while the step size stays the same; a new "
+      "one is computed when an iteration reduces the residual by less than half, "
+      "when the line search cuts a step, or after a failed step. Converges "
+      "linearly: the step tolerances then bound the error only roughly.");
+    prm.declare_entry(
+      "Jacobian reuse",
+      "10",
+      Patterns::Integer(1, 10000),
+      "'modified newton': the most Newton iterations one tangent serves.");
+    prm.declare_entry(
+      "Forcing term maximum",
+      "0.1",
+      Patterns::Double(1e-16, 0.9),
+      "'inexact newton': the loosest relative tolerance of a linear solve (the "
+      "first iteration of every step uses it).");
+    prm.declare_entry("Maximum iterations",
+                      "25",
+                      Patterns::Integer(1, 1000),
+                      "Newton iterations per step before the step counts as failed.");
+    prm.declare_entry("Absolute tolerance",
+                      "1e-9",
+                      Patterns::Double(0., 1e10),
+                      "Converged when the residual's 2-norm (N) is below this, ...");
+    prm.declare_entry(
+      "Relative tolerance",
+      "1e-8",
+      Patterns::Double(0., 1.),
+      "... or below this times the residual at the step's first iterate.");
+    prm.declare_entry(
+      "Line search",
+      "energy",
+      Patterns::Selection("energy|full step"),
+      "'energy': backtracking until the step's incremental potential decreases "
+      "enough (Armijo); below its round-off, until the residual decreases. "
+      "'full step': no line search.");
+    prm.declare_entry(
+      "Displacement tolerance",
+      "1e-6",
+      Patterns::Double(0., 1e3),
+      "... or when a full Newton step (not cut by the line search) moves no "
+      "vertex coordinate by more than this (m). 0 disables this criterion.");
+    prm.declare_entry(
+      "Print iterations",
+      "false",
+      Patterns::Bool(),
+      "Print NOX's residual norm, step length and update norm for every Newton "
+      "iteration (for diagnosing convergence).");
+    prm.declare_entry(
+      "Tangent",
+      "adaptive",
+      Patterns::Selection("adaptive|projected|exact"),
+      "Compression makes the membrane Hessian indefinite. 'projected': the "
+      "geometric stiffness keeps only as much compressive stress as the step's "
+      "mass term pays for, so the tangent is positive definite and CG is valid "
+      "(Newton converges linearly where the sheet is strongly compressed). "
+      "'exact': the true Hessian (quadratic convergence; CG may break down, "
+      "use 'gmres' or 'direct'). 'adaptive': the exact Hessian, replaced by the "
+      "projected one for a Newton iteration whose linear solve fails or does "
+      "not give a descent direction.");
+    prm.leave_subsection();
+  }
+
+  void
+  NonlinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Nonlinear solver");
+    const std::string method_name = prm.get("Method");
+    method                 = method_name == "single step"      ? NewtonMethod::single_step
+                             : method_name == "inexact newton" ? NewtonMethod::inexact
+                             : method_name == "modified newton" ? NewtonMethod::modified
+                                                                : NewtonMethod::full;
+    jacobian_reuse         = prm.get_integer("Jacobian reuse");
+    forcing_term_maximum   = prm.get_double("Forcing term maximum");
+    max_iterations         = prm.get_integer("Maximum iterations");
+    absolute_tolerance     = prm.get_double("Absolute tolerance");
+    relative_tolerance     = prm.get_double("Relative tolerance");
+    line_search            = prm.get("Line search");
+    displacement_tolerance = prm.get_double("Displacement tolerance");
+    print_iterations       = prm.get_bool("Print iterations");
+    tangent                = prm.get("Tangent");
+    prm.leave_subsection();
+  }
+
+
+  void
+  LinearSolverParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    prm.declare_entry(
+      "Method",
+      "cg",
+      Patterns::Selection(solver_methods),
+      "Krylov method for each Newton step: 'cg' (needs the projected tangent), "
+      "'gmres', or 'direct' (a sparse LU factorisation, see 'Direct solver').");
+    prm.declare_entry(
+      "Direct solver",
+      "mumps",
+      Patterns::Selection("mumps|klu"),
+      "Sparse direct solver behind 'Method = direct' (through Amesos): 'mumps' "
+      "(multifrontal, nested-dissection ordering, distributed; fast on large "
+      "meshes) or 'klu' (serial, no fill-reducing ordering for 2D meshes; small "
+      "systems).");
+    prm.declare_entry(
+      "Preconditioner",
+      "amg",
+      Patterns::Selection("amg|jacobi"),
+      "'amg': ML smoothed-aggregation algebraic multigrid with one constant "
+      "mode per displacement component; 'jacobi': point Jacobi.");
+    prm.declare_entry(
+      "Relative tolerance",
+      "1e-6",
+      Patterns::Double(1e-16, 1.),
+      "Krylov stopping criterion, relative to the Newton residual's 2-norm.");
+    prm.declare_entry("Maximum iterations",
+                      "2000",
+                      Patterns::Integer(1, 1000000),
+                      "Krylov iterations before the linear solve counts as failed.");
+    prm.declare_entry("AMG smoother sweeps",
+                      "2",
+                      Patterns::Integer(1, 20),
+                      "Chebyshev smoother sweeps per multigrid level.");
+    prm.declare_entry("AMG aggregation threshold",
+                      "1e-4",
+                      Patterns::Double(0., 1.),
+                      "ML aggregation threshold (strength of connection).");
+    prm.declare_entry(
+      "AMG smoother range",
+      "20",
+      Patterns::Double(1.1, 1000.),
+      "The Chebyshev smoother damps eigenvalues in [λ_max / range, λ_max] of "
+      "each level (ML's 'smoother: Chebyshev alpha'). 20 keeps the CG iteration "
+      "count flat under refinement on the default scene; ML's usual 10 gives "
+      "fewer iterations on coarse meshes and about 30 % more per refinement.");
+    prm.declare_entry(
+      "AMG coarse size",
+      "2000",
+      Patterns::Integer(10, 100000),
+      "Largest multigrid level solved directly (Amesos KLU), in unknowns.");
+    prm.declare_entry(
+      "AMG reuse aggregates",
+      "true",
+      Patterns::Bool(),
+      "Keep the multigrid aggregates and only recompute the hierarchy's operators "
+      "for a new tangent (same sparsity), as long as CG needs at most 30 % more "
+      "iterations than right after the aggregates were built; false rebuilds "
+      "everything for every tangent.");
+    prm.leave_subsection();
+  }
+
+  void
+  LinearSolverParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Linear solver");
+    method                    = prm.get("Method");
+    direct_solver             = prm.get("Direct solver");
+    preconditioner            = prm.get("Preconditioner");
+    relative_tolerance        = prm.get_double("Relative tolerance");
+    max_iterations            = prm.get_integer("Maximum iterations");
+    amg_smoother_sweeps       = prm.get_integer("AMG smoother sweeps");
+    amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
+    amg_reuse_aggregates      = prm.get_bool("AMG reuse aggregates");
+    amg_coarse_size           = prm.get_integer("AMG coarse size");
+    amg_chebyshev_range       = prm.get_double("AMG smoother range");
+    prm.leave_subsection();
+  }
+} // namespace clothsim
