@@ -71,7 +71,12 @@ main(int argc, char **argv)
           displacement == nullptr || velocity == nullptr ||
           displacement->GetNumberOfComponents() != 3 ||
           velocity->GetNumberOfComponents() != 3 ||
-          grid->GetPointData()->GetArray("green_strain") == nullptr ||
+          grid->GetCellData()->GetArray("green_strain") == nullptr ||
+          grid->GetCellData()->GetArray("green_strain")->GetNumberOfTuples() !=
+            grid->GetNumberOfCells() ||
+          grid->GetPointData()->GetArray("green_strain") != nullptr ||
+          // A connected mesh: fewer points than triangle corners.
+          grid->GetNumberOfPoints() >= 3 * grid->GetNumberOfCells() ||
           (n_cells >= 0 && (grid->GetNumberOfCells() != n_cells ||
                             grid->GetNumberOfPoints() != n_points)))
         {

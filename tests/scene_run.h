@@ -29,7 +29,6 @@ namespace clothsim::test
 {
   using namespace dealii;
 
-  // A finished run: the scene (model, probes) and its final state.
   // Values of the given dofs of `u` (ghosted) on every rank.
   inline std::vector<double>
   gather_values(const ClothModel                           &model,
@@ -63,6 +62,7 @@ namespace clothsim::test
                         false);
   }
 
+  // A finished run: the scene (model, probes) and its final state.
   struct SceneRun
   {
     std::unique_ptr<Scene> scene;
