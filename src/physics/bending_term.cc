@@ -5,7 +5,8 @@ namespace clothsim::physics
   BendingTerm::BendingTerm(const mesh::Discretization              &discretization,
                            const BendingMaterial                   &material,
                            const std::set<types::global_dof_index> &clamped_angles)
-    : discretization(discretization)
+    : ElementTerm("bending", TermKind::elastic)
+    , discretization(discretization)
     , material(material)
   {
     for (const auto &edge : discretization.edges())

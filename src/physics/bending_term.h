@@ -23,16 +23,6 @@ namespace clothsim::physics
                 const BendingMaterial                   &material,
                 const std::set<types::global_dof_index> &clamped_angles);
 
-    std::string
-    name() const override
-    {
-      return "bending";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::elastic;
-    }
     bool
     uses_directors() const override
     {

@@ -10,7 +10,8 @@ namespace clothsim::physics
                                    const double                areal_density,
                                    const bool                  lumped_mass,
                                    const MembraneTerm         *membrane)
-    : discretization(discretization)
+    : ElementTerm("damping", TermKind::dissipative)
+    , discretization(discretization)
     , alpha(mass_proportional)
     , beta(membrane != nullptr ? stiffness_proportional : 0.)
     , areal_density(areal_density)
@@ -43,37 +44,24 @@ namespace clothsim::physics
   {
     if (step.damping_weight == 0.)
       return;
-    // s = u - u_n on the element.
-    std::array<double, 9> s;
-    for (unsigned int i = 0; i < 9; ++i)
-      s[i] = element.u[i] - element.previous[i];
-
-    // α part: w_d α/2 sᵀ M s.
+    // α part: w_d α/2 sᵀ M s with s = u - u_n.
     const double mass_weight = step.damping_weight * alpha;
     if (mass_weight > 0.)
-      {
-        const double vertex_mass = areal_density * element.rest.area / 3.;
-        for (unsigned int a = 0; a < 3; ++a)
-          for (unsigned int b = 0; b < 3; ++b)
-            {
-              const double m_ab = mass_entry(lumped_mass, vertex_mass, a, b);
-              if (m_ab == 0.)
-                continue;
-              for (unsigned int d = 0; d < 3; ++d)
-                {
-                  const unsigned int i = 3 * a + d, j = 3 * b + d;
-                  value += 0.5 * m_ab * (mass_weight * s[i] * s[j]);
-                  if (gradient != nullptr)
-                    (*gradient)[i] += m_ab * (mass_weight * s[j]);
-                  if (hessian != nullptr)
-                    (*hessian)[i][j] += mass_weight * m_ab;
-                }
-            }
-      }
+      add_mass_quadratic(lumped_mass,
+                         areal_density * element.rest.area / 3.,
+                         mass_weight,
+                         element.u,
+                         element.previous,
+                         value,
+                         gradient,
+                         hessian);
 
     // β part: w_d β/2 sᵀ K_n s.
     if (beta > 0.)
       {
+        std::array<double, 9> s;
+        for (unsigned int i = 0; i < 9; ++i)
+          s[i] = element.u[i] - element.previous[i];
         Assert(tangents.size() == discretization.elements().size(), ExcInternalError());
         const ElementMatrix &K = tangents[element.index];
         const double         c = step.damping_weight * beta;

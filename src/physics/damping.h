@@ -28,16 +28,6 @@ namespace clothsim::physics
                     const MembraneTerm         *membrane);
 
     std::string
-    name() const override
-    {
-      return "damping";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::dissipative;
-    }
-    std::string
     report_column() const override
     {
       return "damping_dissipated";

@@ -3,7 +3,8 @@
 namespace clothsim::physics
 {
   ExternalLoads::ExternalLoads(const VectorType &forces)
-    : forces(forces)
+    : GlobalTerm("external loads", TermKind::potential)
+    , forces(forces)
   {
     for (const types::global_dof_index i : forces.locally_owned_elements())
       if (forces[i] != 0.)

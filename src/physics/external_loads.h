@@ -15,16 +15,6 @@ namespace clothsim::physics
     explicit ExternalLoads(const VectorType &forces);
 
     std::string
-    name() const override
-    {
-      return "external loads";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::potential;
-    }
-    std::string
     report_column() const override
     {
       return "external_work";

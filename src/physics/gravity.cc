@@ -3,7 +3,8 @@
 namespace clothsim::physics
 {
   GravityTerm::GravityTerm(const double areal_density, const Tensor<1, 3> &gravity)
-    : areal_density(areal_density)
+    : ElementTerm("gravity", TermKind::potential)
+    , areal_density(areal_density)
     , gravity(gravity)
   {}
 

@@ -14,16 +14,6 @@ namespace clothsim::physics
     // ρ in kg/m², g in m/s².
     GravityTerm(const double areal_density, const Tensor<1, 3> &gravity);
 
-    std::string
-    name() const override
-    {
-      return "gravity";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::potential;
-    }
 
     void
     add_to_step(const ElementState &element,

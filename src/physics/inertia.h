@@ -22,21 +22,23 @@ namespace clothsim::physics
     return vertex_mass * (a == b ? 0.5 : 0.25);
   }
 
+  // Adds weight/2 (u - c)ᵀ M (u - c) of one element to `value`, weight M (u - c) to
+  // `gradient` and weight M to `hessian` (each may be null), with vertex_mass = ρ|T̄|/3.
+  void
+  add_mass_quadratic(const bool                   lumped,
+                     const double                 vertex_mass,
+                     const double                 weight,
+                     const std::array<double, 9> &u,
+                     const std::array<double, 9> &centre,
+                     double                      &value,
+                     LocalVector                 *gradient,
+                     LocalMatrix                 *hessian);
+
   class InertiaTerm : public ElementTerm
   {
   public:
     InertiaTerm(const double areal_density, const bool lumped_mass);
 
-    std::string
-    name() const override
-    {
-      return "kinetic";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::kinetic;
-    }
 
     void
     add_to_step(const ElementState &element,

@@ -8,7 +8,8 @@ namespace clothsim::physics
                              const double            areal_density,
                              const bool              lumped_mass,
                              const double            mass_proportional_damping)
-    : material(material)
+    : ElementTerm("membrane", TermKind::elastic)
+    , material(material)
     , areal_density(areal_density)
     , lumped_mass(lumped_mass)
     , mass_proportional_damping(mass_proportional_damping)

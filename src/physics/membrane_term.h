@@ -21,16 +21,6 @@ namespace clothsim::physics
                  const bool              lumped_mass,
                  const double            mass_proportional_damping);
 
-    std::string
-    name() const override
-    {
-      return "membrane";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::elastic;
-    }
 
     void
     add_to_step(const ElementState &element,

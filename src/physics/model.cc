@@ -5,11 +5,38 @@
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace clothsim::physics
 {
+  namespace
+  {
+    using Clock = std::chrono::steady_clock;
+
+    // Every how many triangles the element terms are timed.
+    constexpr unsigned int timing_stride = 16;
+
+    double
+    seconds_since(const Clock::time_point start)
+    {
+      return std::chrono::duration<double>(Clock::now() - start).count();
+    }
+
+    // The cost of timing nothing (two clock reads), s, subtracted from each sample.
+    double
+    clock_overhead()
+    {
+      constexpr unsigned int n     = 1000;
+      double                 total = 0.;
+      for (unsigned int i = 0; i < n; ++i)
+        total += seconds_since(Clock::now());
+      return total / n;
+    }
+  } // namespace
+
+
   std::string
   Term::report_column() const
   {
@@ -24,6 +51,7 @@ namespace clothsim::physics
     : discretization(discretization)
     , constraints(constraints)
     , directors(discretization.has_directors())
+    , timing_overhead(clock_overhead())
   {
     for (const auto &element : discretization.elements())
       rest.push_back(membrane_rest_data(element.reference));
@@ -36,6 +64,7 @@ namespace clothsim::physics
     AssertThrow(global_terms.empty(),
                 ExcMessage("element terms come before the other terms"));
     all_terms.push_back(term.get());
+    seconds.push_back(0.);
     element_terms.push_back(std::move(term));
   }
 
@@ -44,6 +73,7 @@ namespace clothsim::physics
   Model::add(std::unique_ptr<GlobalTerm> term)
   {
     all_terms.push_back(term.get());
+    seconds.push_back(0.);
     global_terms.push_back(std::move(term));
   }
 
@@ -140,12 +170,19 @@ namespace clothsim::physics
       if (hessian != nullptr)
         for (auto &row : H)
           row.fill(0.);
-      for (const auto &term : element_terms)
-        term->add_to_step(state,
-                          step,
-                          value,
-                          gradient != nullptr ? &g : nullptr,
-                          hessian != nullptr ? &H : nullptr);
+      const bool timed = state.index % timing_stride == 0;
+      for (unsigned int k = 0; k < element_terms.size(); ++k)
+        {
+          const Clock::time_point start = timed ? Clock::now() : Clock::time_point();
+          element_terms[k]->add_to_step(state,
+                                        step,
+                                        value,
+                                        gradient != nullptr ? &g : nullptr,
+                                        hessian != nullptr ? &H : nullptr);
+          if (timed)
+            seconds[k] +=
+              timing_stride * std::max(seconds_since(start) - timing_overhead, 0.);
+        }
 
       const auto &element = elements[state.index];
       std::copy(element.dofs.begin(), element.dofs.end(), dof_vector.begin());
@@ -168,8 +205,12 @@ namespace clothsim::physics
         }
     });
 
-    for (const auto &term : global_terms)
-      value += term->add_to_step(u, step, constraints, gradient, hessian);
+    for (unsigned int k = 0; k < global_terms.size(); ++k)
+      {
+        const Clock::time_point start = Clock::now();
+        value += global_terms[k]->add_to_step(u, step, constraints, gradient, hessian);
+        seconds[element_terms.size() + k] += seconds_since(start);
+      }
 
     if (gradient != nullptr)
       gradient->compress(VectorOperation::add);

@@ -97,6 +97,16 @@ namespace clothsim::physics
     std::pair<double, double>
     area_ratio_range(const VectorType &u) const;
 
+    // Wall time spent in each term (in the order of terms()) by assemble() so far, s:
+    // measured for the terms with their own loops, estimated for the element terms from
+    // every 16th triangle (a clock read per term and triangle would cost as much as a
+    // cheap term).
+    const std::vector<double> &
+    term_seconds() const
+    {
+      return seconds;
+    }
+
     // Per-triangle fields at u (ghosted): the Green strain norm sqrt(tr(M²)) and each
     // element term's own fields.
     std::vector<CellField>
@@ -119,6 +129,8 @@ namespace clothsim::physics
     std::vector<Term *>                       all_terms;
     bool                                      directors = false;
     std::vector<MembraneRestData>             rest; // per element, for strain and areas
+    mutable std::vector<double>               seconds; // per term, see term_seconds()
+    const double                              timing_overhead; // s per sample
   };
 
   // Output fields of an element term (membrane stress, curvature change, ...).

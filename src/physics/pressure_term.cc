@@ -5,7 +5,8 @@
 namespace clothsim::physics
 {
   PressureTerm::PressureTerm(const double pressure, const Point<3> &apex)
-    : pressure(pressure)
+    : ElementTerm("pressure", TermKind::potential)
+    , pressure(pressure)
     , apex(apex)
   {}
 

@@ -16,16 +16,6 @@ namespace clothsim::physics
     // `apex`: the cones' apex c, m.
     PressureTerm(const double pressure, const Point<3> &apex);
 
-    std::string
-    name() const override
-    {
-      return "pressure";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::potential;
-    }
 
     void
     add_to_step(const ElementState &element,

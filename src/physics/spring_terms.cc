@@ -3,7 +3,8 @@
 namespace clothsim::physics
 {
   SpringTerm::SpringTerm(std::shared_ptr<const SpringNetwork> network)
-    : network(std::move(network))
+    : GlobalTerm("springs", TermKind::elastic)
+    , network(std::move(network))
   {}
 
 
@@ -63,7 +64,8 @@ namespace clothsim::physics
 
   SpringDamping::SpringDamping(std::shared_ptr<SpringNetwork> network,
                                const double                   stiffness_proportional)
-    : network(std::move(network))
+    : GlobalTerm("spring damping", TermKind::dissipative)
+    , network(std::move(network))
     , beta(stiffness_proportional)
   {}
 

@@ -18,16 +18,6 @@ namespace clothsim::physics
   public:
     explicit SpringTerm(std::shared_ptr<const SpringNetwork> network);
 
-    std::string
-    name() const override
-    {
-      return "springs";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::elastic;
-    }
 
     void
     add_couplings(TrilinosWrappers::SparsityPattern &sparsity,
@@ -62,16 +52,6 @@ namespace clothsim::physics
     SpringDamping(std::shared_ptr<SpringNetwork> network,
                   const double                   stiffness_proportional);
 
-    std::string
-    name() const override
-    {
-      return "spring damping";
-    }
-    TermKind
-    kind() const override
-    {
-      return TermKind::dissipative;
-    }
     std::string
     report_column() const override
     {

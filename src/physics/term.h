@@ -79,15 +79,24 @@ namespace clothsim::physics
   class Term
   {
   public:
+    // `name`: short and lower-case ("membrane", "gravity"); statistics.csv gets a column
+    // `<name>_energy` (spaces as underscores) unless the term names its own.
+    Term(const std::string &name, const TermKind kind)
+      : term_name(name)
+      , term_kind(kind)
+    {}
     virtual ~Term() = default;
 
-    // Short lower-case name ("membrane", "gravity"); statistics.csv gets a column
-    // `<name>_energy` (spaces as underscores) unless the term names its own.
-    virtual std::string
-    name() const = 0;
-
-    virtual TermKind
-    kind() const = 0;
+    const std::string &
+    name() const
+    {
+      return term_name;
+    }
+    TermKind
+    kind() const
+    {
+      return term_kind;
+    }
 
     // The column of statistics.csv that reports this term, and the value reported there
     // for the term's energy E (its contribution to the total).
@@ -109,12 +118,18 @@ namespace clothsim::physics
     virtual void
     commit_step(const VectorType & /*u*/, VectorType & /*u_owned*/)
     {}
+
+  private:
+    const std::string term_name;
+    const TermKind    term_kind;
   };
 
   // A term that is a sum over the triangles.
   class ElementTerm : public Term
   {
   public:
+    using Term::Term;
+
     // Whether the term reads the director angles (then 12 local unknowns, else 9).
     virtual bool
     uses_directors() const
@@ -140,6 +155,8 @@ namespace clothsim::physics
   class GlobalTerm : public Term
   {
   public:
+    using Term::Term;
+
     // Couplings of dofs that share no cell.
     virtual void
     add_couplings(TrilinosWrappers::SparsityPattern & /*sparsity*/,
