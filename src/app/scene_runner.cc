@@ -155,7 +155,7 @@ namespace clothsim
     timer.print_summary();
     // The assembly's cost per term: a term the scene does not need is not there.
     const physics::Model &physics = model.get_physics();
-    pcout << "assembly time per term (element terms estimated from every 16th triangle):";
+    pcout << "assembly time per term (element terms estimated from every 64th triangle):";
     for (unsigned int k = 0; k < physics.terms().size(); ++k)
       pcout << (k == 0 ? " " : ", ") << physics.terms()[k]->name() << " "
             << physics.term_seconds()[k] << " s";

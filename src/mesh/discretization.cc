@@ -128,7 +128,7 @@ namespace clothsim::mesh
     initialize_ghosted(prototype);
     std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
     element_table.clear();
-    displacement_dofs = IndexSet(dof_handler.n_dofs());
+    std::vector<types::global_dof_index> owned_displacements;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -144,13 +144,19 @@ namespace clothsim::mesh
             {
               element.local_dofs[i] = local_index(prototype, element.dofs[i]);
               if (locally_owned_dofs.is_element(element.dofs[i]))
-                displacement_dofs.add_index(element.dofs[i]);
+                owned_displacements.push_back(element.dofs[i]);
             }
           for (unsigned int v = 0; v < 3; ++v)
             element.reference[v] = cell->vertex(v);
           element.area = triangle_area(element.reference);
           element_table.push_back(element);
         }
+    std::sort(owned_displacements.begin(), owned_displacements.end());
+    owned_displacements.erase(
+      std::unique(owned_displacements.begin(), owned_displacements.end()),
+      owned_displacements.end());
+    displacement_dofs = IndexSet(dof_handler.n_dofs());
+    displacement_dofs.add_indices(owned_displacements.begin(), owned_displacements.end());
     displacement_dofs.compress();
   }
 

@@ -99,7 +99,7 @@ namespace clothsim::physics
 
     // Wall time spent in each term (in the order of terms()) by assemble() so far, s:
     // measured for the terms with their own loops, estimated for the element terms from
-    // every 16th triangle (a clock read per term and triangle would cost as much as a
+    // every 64th triangle (a clock read per term and triangle would cost as much as a
     // cheap term).
     const std::vector<double> &
     term_seconds() const

@@ -2,6 +2,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <algorithm>
+
 namespace clothsim
 {
   NearNullSpace
@@ -54,11 +56,15 @@ namespace clothsim
     if (other_unknowns)
       {
         // Displacements and other unknowns interleave: AMG gets the displacement block.
-        space.displacement_dofs = IndexSet(owned_dofs.size());
+        std::vector<types::global_dof_index> dofs;
         for (const ReferenceTriangle &triangle : triangles)
           for (const types::global_dof_index dof : triangle.dofs)
             if (owned_dofs.is_element(dof))
-              space.displacement_dofs.add_index(dof);
+              dofs.push_back(dof);
+        std::sort(dofs.begin(), dofs.end());
+        dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+        space.displacement_dofs = IndexSet(owned_dofs.size());
+        space.displacement_dofs.add_indices(dofs.begin(), dofs.end());
         space.displacement_dofs.compress();
         space.owned_dofs    = owned_dofs;
         space.relevant_dofs = relevant_dofs;
