@@ -152,9 +152,9 @@ namespace clothsim::mesh
           element_table.push_back(element);
         }
     std::sort(owned_displacements.begin(), owned_displacements.end());
-    owned_displacements.erase(
-      std::unique(owned_displacements.begin(), owned_displacements.end()),
-      owned_displacements.end());
+    owned_displacements.erase(std::unique(owned_displacements.begin(),
+                                          owned_displacements.end()),
+                              owned_displacements.end());
     displacement_dofs = IndexSet(dof_handler.n_dofs());
     displacement_dofs.add_indices(owned_displacements.begin(), owned_displacements.end());
     displacement_dofs.compress();

@@ -286,18 +286,70 @@ namespace clothsim
   }
 
 
+  void
+  TimeStepper::halve_step(const NewtonResult &result,
+                          const double        time,
+                          const double        time_new,
+                          const unsigned int  step,
+                          RunSummary         &summary)
+  {
+    if (control.halvings == parameters.time.max_step_halvings)
+      throw SimulationError(
+        "Newton failed at t = " + std::to_string(time_new) +
+        " with dt = " + std::to_string(time_new - time) + " after " +
+        std::to_string(control.halvings) + " step halvings (" + result.failure +
+        "); the run stops here, output up to t = " + std::to_string(time) + " is kept");
+    ++control.halvings;
+    ++summary.retries;
+    pcout << "step " << step + 1 << ": Newton failed at t = " << time_new << " ("
+          << result.failure
+          << "); retrying with dt = " << control.nominal / std::pow(2., control.halvings)
+          << std::endl;
+  }
+
+
+  bool
+  TimeStepper::accept_step(const Attempt &attempt,
+                           const double   time,
+                           const double   time_new,
+                           const double   end,
+                           RunSummary    &summary)
+  {
+    const double error     = attempt.error_estimate;
+    const double dt        = time_new - time;
+    const double tolerance = step_tolerance(dt, u_new.linfty_norm());
+    const double factor =
+      error > 0.
+        ? std::clamp(0.9 * std::pow(tolerance / error, 1. / (attempt.order + 1.)),
+                     0.2,
+                     2.)
+        : 2.;
+    control.next = std::min(factor * dt, parameters.time.maximum_time_step);
+    if (error <= tolerance)
+      return true;
+    if (dt < 1e-12 * end)
+      throw SimulationError("the error estimate " + std::to_string(error) +
+                            " m stays above the tolerance " + std::to_string(tolerance) +
+                            " m at dt = " + std::to_string(dt) +
+                            " s; output up to t = " + std::to_string(time) + " is kept");
+    ++control.rejected;
+    ++summary.rejected;
+    control.restart(time, control.next, end);
+    return false;
+  }
+
+
   RunSummary
   TimeStepper::run()
   {
     const double end = dynamic ? parameters.time.end_time : 1.;
-    double       nominal_step =
+    control.nominal =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
     const bool   adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;
     const bool   adaptive            = dynamic && parameters.time.adaptive_time_steps;
     const double largest_increment   = 4. / parameters.time.load_steps;
     const double output_interval     = dynamic ? parameters.output.interval : 0.;
-    const unsigned int max_halvings  = parameters.time.max_step_halvings;
-    const double       epsilon       = 1e-9 * nominal_step;
+    const double epsilon             = 1e-9 * control.nominal;
 
     RunSummary summary;
     Progress   progress(std::cout,
@@ -324,72 +376,34 @@ namespace clothsim
     while (time < end - epsilon)
       {
         // One nominal step, in 2^k sub-steps if Newton needs smaller ones.
-        double       target   = std::min(time + nominal_step, end);
-        unsigned int halvings = 0, last_iterations = 0, rejected = 0;
-        double       next_step = nominal_step;
-        while (time < target - epsilon)
+        control.restart(time, control.nominal, end);
+        control.next                 = control.nominal;
+        unsigned int last_iterations = 0;
+        while (time < control.target - epsilon)
           {
-            const double dt =
-              std::min((target - time), nominal_step / std::pow(2., halvings));
-            const double time_new = (target - time - dt < epsilon) ? target : time + dt;
+            const double dt = std::min(control.target - time,
+                                       control.nominal / std::pow(2., control.halvings));
+            const double time_new =
+              (control.target - time - dt < epsilon) ? control.target : time + dt;
 
             // predict, solve, check
             const Attempt attempt =
               attempt_step(time_new, time_new - time, dynamic ? 1. : time_new);
             const NewtonResult &result = attempt.newton;
             summary.newton_iterations += result.iterations;
+            summary.linear_iterations += result.linear_iterations;
             summary.tangents += result.tangents;
             last_iterations = result.iterations;
-            summary.linear_iterations += result.linear_iterations;
             if (!result.converged)
               {
-                if (halvings == max_halvings)
-                  throw SimulationError(
-                    "Newton failed at t = " + std::to_string(time_new) +
-                    " with dt = " + std::to_string(time_new - time) + " after " +
-                    std::to_string(halvings) + " step halvings (" + result.failure +
-                    "); the run stops here, output up to t = " + std::to_string(time) +
-                    " is kept");
-                ++halvings;
-                ++summary.retries;
                 progress.finish();
-                pcout << "step " << step + 1 << ": Newton failed at t = " << time_new
-                      << " (" << result.failure
-                      << "); retrying with dt = " << nominal_step / std::pow(2., halvings)
-                      << std::endl;
+                halve_step(result, time, time_new, step, summary);
                 continue;
               }
 
             // accept or reject (the estimate is written for every dynamic step)
-            if (adaptive)
-              {
-                const double error = attempt.error_estimate;
-                const double tolerance =
-                  step_tolerance(time_new - time, u_new.linfty_norm());
-                const double factor =
-                  error > 0. ? std::clamp(0.9 * std::pow(tolerance / error,
-                                                         1. / (attempt.order + 1.)),
-                                          0.2,
-                                          2.)
-                             : 2.;
-                next_step =
-                  std::min(factor * (time_new - time), parameters.time.maximum_time_step);
-                if (error > tolerance)
-                  {
-                    if (time_new - time < 1e-12 * end)
-                      throw SimulationError(
-                        "the error estimate " + std::to_string(error) +
-                        " m stays above the tolerance " + std::to_string(tolerance) +
-                        " m at dt = " + std::to_string(time_new - time) +
-                        " s; output up to t = " + std::to_string(time) + " is kept");
-                    ++rejected;
-                    ++summary.rejected;
-                    nominal_step = next_step;
-                    target       = std::min(time + nominal_step, end);
-                    halvings     = 0;
-                    continue;
-                  }
-              }
+            if (adaptive && !accept_step(attempt, time, time_new, end, summary))
+              continue;
 
             // commit
             const double dt_taken = time_new - time;
@@ -402,21 +416,16 @@ namespace clothsim
             figures.newton_iterations = result.iterations;
             figures.linear_iterations = result.linear_iterations;
             figures.residual          = result.residual_norm;
-            figures.retries           = halvings;
-            figures.rejected          = rejected;
+            figures.retries           = control.halvings;
+            figures.rejected          = control.rejected;
             figures.error_estimate    = attempt.error_estimate;
             record(step, time, dt_taken, figures, current_energies(), step_times);
-            rejected = 0;
+            control.rejected = 0;
             summary.estimated_error += attempt.error_estimate;
-            if (adaptive)
-              {
-                // The controller's step replaces any Newton halvings of this one.
-                nominal_step = next_step;
-                target       = std::min(time + nominal_step, end);
-                halvings     = 0;
-              }
-            const bool last = time >= end - epsilon;
-            if (last || output_interval == 0. || time >= next_output - epsilon)
+            if (adaptive) // the controller's step replaces any halvings of this one
+              control.restart(time, control.next, end);
+            if (time >= end - epsilon || output_interval == 0. ||
+                time >= next_output - epsilon)
               {
                 write_frame(step, time);
                 while (next_output <= time + epsilon && output_interval > 0.)
@@ -431,10 +440,10 @@ namespace clothsim
         // easy time.
         if (adaptive_increments)
           {
-            if (halvings > 0)
-              nominal_step /= std::pow(2., halvings);
+            if (control.halvings > 0)
+              control.nominal /= std::pow(2., control.halvings);
             else if (last_iterations <= 6)
-              nominal_step = std::min(1.5 * nominal_step, largest_increment);
+              control.nominal = std::min(1.5 * control.nominal, largest_increment);
           }
       }
     progress.finish();

@@ -22,6 +22,8 @@
 #include "solvers/newton_solver.h"
 #include "time/stepper_core.h"
 
+#include <algorithm>
+
 namespace clothsim
 {
   class TimeStepper : public StepperCore
@@ -55,6 +57,25 @@ namespace clothsim
     Attempt
     attempt_step(const double time_new, const double dt, const double load_factor);
 
+    // After a failed attempt: the step is halved (or, after 'Maximum step halvings',
+    // the run stops with a SimulationError), and the log says so.
+    void
+    halve_step(const NewtonResult &result,
+               const double        time,
+               const double        time_new,
+               const unsigned int  step,
+               RunSummary         &summary);
+
+    // accept or reject (adaptive steps): the error estimate against the step's
+    // tolerance; proposes the next step size. A rejected step restarts the nominal step
+    // from `time` with the proposed size.
+    bool
+    accept_step(const Attempt &attempt,
+                const double   time,
+                const double   time_new,
+                const double   end,
+                RunSummary    &summary);
+
     // commit: the accepted step of size dt becomes state n.
     void
     commit_step(const unsigned int step, const double dt);
@@ -75,9 +96,30 @@ namespace clothsim
     double
     step_tolerance(const double dt, const double largest_displacement) const;
 
+    // The step sizes of the loop: the nominal step, the time it aims for, the next size
+    // the error control proposes, and the halvings and rejections on the way.
+    struct StepControl
+    {
+      double       nominal  = 0.; // s (load factor in static mode)
+      double       target   = 0.;
+      double       next     = 0.;
+      unsigned int halvings = 0;
+      unsigned int rejected = 0;
+
+      // A new nominal step of the given size from `time`, no halvings.
+      void
+      restart(const double time, const double size, const double end)
+      {
+        nominal  = size;
+        target   = std::min(time + size, end);
+        halvings = 0;
+      }
+    };
+
     MatrixType   tangent;
     NewtonSolver newton;
     bool         dynamic;
+    StepControl  control;
 
     VectorType u_n, v_n, u_new, v_new; // owned
     VectorType centre;                 // owned: ũ, the step's damping centre
