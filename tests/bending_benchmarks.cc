@@ -19,7 +19,7 @@
 // values of Sze et al. (themselves a finite-element solution, to 4 digits) the bound is
 // 0.2 % (measured at level 2: W 0.034 %, -U 0.11 %).
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <filesystem>

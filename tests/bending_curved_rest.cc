@@ -32,7 +32,7 @@
 //     new vertices on the coarse facets, the rest curvature would concentrate on the
 //     coarse edges and this energy would grow like 1/h instead.
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <filesystem>

@@ -40,7 +40,7 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <filesystem>

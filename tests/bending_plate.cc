@@ -20,7 +20,7 @@
 //     wrong rigidity, load or boundary condition moves the result by far more.
 // The centre probe must sit exactly on (0.5, 0.5).
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <filesystem>

@@ -12,7 +12,7 @@
 //    the membrane's at 1.2 grows too slowly to show within 0.1 s.)
 
 #include "csv.h"
-#include "scene_run.h"
+#include "test_support.h"
 
 using namespace clothsim;
 using namespace clothsim::test;

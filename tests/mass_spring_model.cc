@@ -19,7 +19,7 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/grid/tria_description.h>
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <random>
 

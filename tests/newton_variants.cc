@@ -21,7 +21,7 @@
 //    Newton solve, so the run finishes with step halvings and every triangle below 100
 //    times its area.
 
-#include "scene_run.h"
+#include "test_support.h"
 
 using namespace clothsim;
 using namespace clothsim::test;

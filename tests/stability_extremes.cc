@@ -48,7 +48,7 @@
 // table at the end.
 
 #include "csv.h"
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <algorithm>
 #include <chrono>

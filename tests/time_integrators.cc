@@ -20,7 +20,7 @@
 //    four times smaller gives a smaller error.
 
 #include "csv.h"
-#include "scene_run.h"
+#include "test_support.h"
 
 using namespace clothsim;
 using namespace clothsim::test;

@@ -12,7 +12,7 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <filesystem>
