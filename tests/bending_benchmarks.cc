@@ -19,15 +19,14 @@
 // values of Sze et al. (themselves a finite-element solution, to 4 digits) the bound is
 // 0.2 % (measured at level 2: W 0.034 %, -U 0.11 %).
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
-#include <filesystem>
 #include <iomanip>
-#include <iostream>
 #include <vector>
 
 using namespace clothsim;
+using namespace clothsim::test;
 
 namespace
 {
@@ -55,24 +54,23 @@ namespace
               << q.values[level] << std::setw(16) << std::setprecision(3) << errors.back()
               << std::setw(7);
         if (level > 0)
-          pcout << test::observed_order(errors[level - 1], errors[level]);
+          pcout << observed_order(errors[level - 1], errors[level]);
         else
           pcout << "";
         pcout << std::setw(20)
               << std::abs(q.values[level] - q.published) / std::abs(q.published)
               << std::endl;
       }
-    bool passed = test::check_decreasing(pcout, q.name, errors);
-    passed &= test::check_below(pcout,
-                                q.name + ": relative error vs exact at the finest level",
-                                errors.back(),
-                                5e-4);
-    passed &=
-      test::check_below(pcout,
-                        q.name + ": relative difference from the published value at "
-                                 "the finest level",
-                        std::abs(q.values.back() - q.published) / std::abs(q.published),
-                        2e-3);
+    bool passed = check_decreasing(pcout, q.name, errors);
+    passed &= check_below(pcout,
+                          q.name + ": relative error vs exact at the finest level",
+                          errors.back(),
+                          5e-4);
+    passed &= check_below(pcout,
+                          q.name + ": relative difference from the published value at "
+                                   "the finest level",
+                          std::abs(q.values.back() - q.published) / std::abs(q.published),
+                          2e-3);
     return passed;
   }
 } // namespace
@@ -80,15 +78,12 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout = env.pcout;
 
-  const std::string benchmarks = std::string(CLOTHSIM_SOURCE_DIR) + "/params/benchmarks/";
-  const std::string directory =
-    std::filesystem::temp_directory_path() / "clothsim-bending-benchmarks";
-  const unsigned int n_levels = 3;
+  const std::string  benchmarks = source_path("params/benchmarks/");
+  const std::string  directory  = scratch_directory("clothsim-bending-benchmarks");
+  const unsigned int n_levels   = 3;
 
   Quantity tip_w{"end shear: W_tip", 6.6996, 6.698, {}};
   Quantity tip_u{"end shear: -U_tip", 3.2894, 3.286, {}};
@@ -103,8 +98,10 @@ main(int argc, char **argv)
                                                   "Mesh/Global refinements=" +
                                                     std::to_string(level)};
       {
-        const test::SceneRun run = test::run_scene(
-          benchmarks + "cantilever-end-shear.prm", overrides, directory, communicator);
+        const SceneRun run = run_scene(benchmarks + "cantilever-end-shear.prm",
+                                       overrides,
+                                       directory,
+                                       env.communicator);
         AssertThrow(run.probe_point("tip").distance(Point<3>(10., 0.5, 0.)) < 1e-12,
                     ExcMessage("the end-shear tip probe is not at (10, 0.5, 0)"));
         const Tensor<1, 3> tip = run.probe_displacement("tip");
@@ -112,10 +109,10 @@ main(int argc, char **argv)
         tip_u.values.push_back(-tip[0]);
       }
       {
-        const test::SceneRun run = test::run_scene(benchmarks + "heavy-cantilever.prm",
-                                                   overrides,
-                                                   directory,
-                                                   communicator);
+        const SceneRun run = run_scene(benchmarks + "heavy-cantilever.prm",
+                                       overrides,
+                                       directory,
+                                       env.communicator);
         AssertThrow(run.probe_point("tip").distance(Point<3>(1., 0.05, 0.)) < 1e-12,
                     ExcMessage("the heavy-cantilever tip probe is not at (1, 0.05, 0)"));
         const Tensor<1, 3> tip    = run.probe_displacement("tip");
@@ -139,32 +136,28 @@ main(int argc, char **argv)
          {"one load step, cut on failure", {"Time/Load steps=1"}},
          {"adaptive from 1/20", {"Time/Load steps=20", "Time/Adaptive load steps=true"}}})
     {
-      std::vector<std::string> overrides = {"Output/Write VTK=false",
-                                            "Output/Progress=off",
-                                            "Mesh/Global refinements=0"};
-      overrides.insert(overrides.end(), settings.begin(), settings.end());
-      const test::SceneRun run   = test::run_scene(benchmarks + "heavy-cantilever.prm",
-                                                 overrides,
-                                                 directory,
-                                                 communicator);
-      const double         value = -run.probe_displacement("tip")[2];
+      const SceneRun run   = run_scene(benchmarks + "heavy-cantilever.prm",
+                                     join({"Output/Write VTK=false",
+                                             "Output/Progress=off",
+                                             "Mesh/Global refinements=0"},
+                                          settings),
+                                     directory,
+                                     env.communicator);
+      const double   value = -run.probe_displacement("tip")[2];
       pcout << "  " << name << ": " << run.summary.steps << " increments, "
             << run.summary.retries << " cut, tip deflection " << std::setprecision(12)
             << value << std::endl;
-      passed &=
-        test::check_below(pcout,
-                          name + ": relative difference from 8 fixed increments",
-                          std::abs(value - deflection.values[0]) / deflection.values[0],
-                          1e-8);
+      passed &= check_below(pcout,
+                            name + ": relative difference from 8 fixed increments",
+                            std::abs(value - deflection.values[0]) / deflection.values[0],
+                            1e-8);
       if (settings.size() == 1)
-        passed &=
-          test::check_above(pcout, name + ": increments cut", run.summary.retries, 0.5);
+        passed &= check_above(pcout, name + ": increments cut", run.summary.retries, 0.5);
       else
-        passed &= test::check_below(pcout,
-                                    name + ": increments taken (of 20 initially)",
-                                    run.summary.steps,
-                                    19.5);
+        passed &= check_below(pcout,
+                              name + ": increments taken (of 20 initially)",
+                              run.summary.steps,
+                              19.5);
     }
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

@@ -32,16 +32,15 @@
 //     new vertices on the coarse facets, the rest curvature would concentrate on the
 //     coarse edges and this energy would grow like 1/h instead.
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
-#include <filesystem>
 #include <iomanip>
-#include <iostream>
 #include <map>
 #include <vector>
 
 using namespace clothsim;
+using namespace clothsim::test;
 
 namespace
 {
@@ -105,16 +104,14 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  AssertThrow(Utilities::MPI::n_mpi_processes(communicator) == 1,
+  Environment env(argc, argv);
+  AssertThrow(Utilities::MPI::n_mpi_processes(env.communicator) == 1,
               ExcMessage("the orientation check needs the whole mesh on one rank"));
-  ConditionalOStream pcout(std::cout, true);
+  ConditionalOStream &pcout        = env.pcout;
+  const MPI_Comm      communicator = env.communicator;
 
-  const std::string scene_file =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/tests/scenes/bending_curved_rest.prm";
-  const std::string directory =
-    std::filesystem::temp_directory_path() / "clothsim-bending-curved-rest";
+  const std::string  scene_file = source_path("tests/scenes/bending_curved_rest.prm");
+  const std::string  directory  = scratch_directory("clothsim-bending-curved-rest");
   const double       D = 1., area = radius * numbers::PI / 3. * 1.;
   const double       exact_energy = 0.5 * D * area / (radius * radius);
   const unsigned int n_levels     = 5;
@@ -152,70 +149,56 @@ main(int argc, char **argv)
             << std::setw(17) << rest_energies.back() << std::setw(12)
             << rest_forces.back() << std::endl;
 
-      passed &=
-        test::check_below(pcout,
-                          "level " + std::to_string(level) +
-                            ": largest distance of a vertex from the cylinder / R",
-                          off / radius,
-                          1e-12);
-      passed &= test::check_below(
-        pcout, "level " + std::to_string(level) + ": orientation defects", defects, 0.5);
+      passed &= check_below(pcout,
+                            "level " + std::to_string(level) +
+                              ": largest distance of a vertex from the cylinder / R",
+                            off / radius,
+                            1e-12);
+      passed &= check_below(pcout,
+                            "level " + std::to_string(level) + ": orientation defects",
+                            defects,
+                            0.5);
       if (level > 0)
-        passed &= test::check_above(pcout,
-                                    "level " + std::to_string(level) +
-                                      ", Surface = flat: largest distance from the "
-                                      "cylinder / R",
-                                    flat_off / radius,
-                                    1e-3);
+        passed &= check_above(pcout,
+                              "level " + std::to_string(level) +
+                                ", Surface = flat: largest distance from the "
+                                "cylinder / R",
+                              flat_off / radius,
+                              1e-3);
     }
 
   // (c) Flattening, ν = 0 and ν = 0.3.
   for (const double nu : {0., 0.3})
     {
-      pcout << "\n(c) flattening the panel, nu = " << nu << " (exact energy "
-            << std::setprecision(10) << exact_energy
-            << " J)\nlevel  vertices  energy (J)      ratio         |ratio - 1|  order\n";
+      const std::string nu_text = nu == 0. ? "0" : "0.3";
+      print_energy_table_head(pcout,
+                              "(c) flattening the panel, nu = " + nu_text,
+                              exact_energy);
       std::vector<double> errors, interior_errors;
       for (unsigned int level = 0; level < n_levels; ++level)
         {
-          const test::SceneRun run =
-            test::run_scene(scene_file,
-                            {"Mesh/Global refinements=" + std::to_string(level),
-                             "Material/Poisson ratio=" + std::to_string(nu)},
-                            directory,
-                            communicator);
-          const double energy = run.elastic_energy();
-          const double ratio  = energy / exact_energy;
-          errors.push_back(std::abs(ratio - 1.));
-          pcout << std::setw(5) << level << std::setw(10) << run.model().n_vertices()
-                << std::setw(16) << std::setprecision(10) << energy << std::setw(14)
-                << std::setprecision(8) << ratio << std::setw(13) << std::setprecision(3)
-                << errors.back();
-          if (level > 0)
-            pcout << std::setw(7) << std::setprecision(3)
-                  << test::observed_order(errors[level - 1], errors[level]);
+          const SceneRun run =
+            run_scene(scene_file,
+                      {"Mesh/Global refinements=" + std::to_string(level),
+                       "Material/Poisson ratio=" + std::to_string(nu)},
+                      directory,
+                      communicator);
+          const double energy =
+            print_energy_level(pcout, level, run, exact_energy, errors);
           if (nu == 0.)
-            {
-              const double density_ratio =
-                test::interior_energy_density(run,
-                                              D,
-                                              [](const Point<3> &X) {
-                                                // Away from the free straight sides and
-                                                // the arcs.
-                                                return std::abs(std::atan2(X[0], X[2])) <
-                                                         20. * numbers::PI / 180. &&
-                                                       X[1] > 0.2 && X[1] < 0.8;
-                                              }) /
-                (0.5 * D / (radius * radius));
-              interior_errors.push_back(std::abs(density_ratio - 1.));
-              pcout << "\n       away from the boundary: energy density ratio "
-                    << std::setprecision(8) << density_ratio << ", |ratio - 1| "
-                    << std::setprecision(3) << interior_errors.back();
-              if (level > 0)
-                pcout << ", order "
-                      << test::observed_order(interior_errors[level - 1],
-                                              interior_errors[level]);
-            }
+            print_interior_density_level(
+              pcout,
+              "away from the boundary",
+              level,
+              run,
+              D,
+              0.5 * D / (radius * radius),
+              [](const Point<3> &X) {
+                // Away from the free straight sides and the arcs.
+                return std::abs(std::atan2(X[0], X[2])) < 20. * numbers::PI / 180. &&
+                       X[1] > 0.2 && X[1] < 0.8;
+              },
+              interior_errors);
           pcout << std::endl;
 
           if (nu == 0.)
@@ -223,36 +206,22 @@ main(int argc, char **argv)
               // (b), continued: the rest state against the scale of the flattened one.
               const double force_scale =
                 largest_internal_force(run.model(), run.displacement);
-              passed &= test::check_below(pcout,
-                                          "level " + std::to_string(level) +
-                                            ": rest energy / flattening energy",
-                                          rest_energies[level] / energy,
-                                          1e-20);
-              passed &=
-                test::check_below(pcout,
-                                  "level " + std::to_string(level) +
-                                    ": largest rest force / largest flattened force",
-                                  rest_forces[level] / force_scale,
-                                  1e-12);
+              passed &= check_below(pcout,
+                                    "level " + std::to_string(level) +
+                                      ": rest energy / flattening energy",
+                                    rest_energies[level] / energy,
+                                    1e-20);
+              passed &= check_below(pcout,
+                                    "level " + std::to_string(level) +
+                                      ": largest rest force / largest flattened force",
+                                    rest_forces[level] / force_scale,
+                                    1e-12);
             }
         }
-      const std::string name = "flattening, nu = " + std::string(nu == 0. ? "0" : "0.3");
-      passed &= test::check_convergence(pcout, name, errors, 0.8, "|ratio - 1|", 2e-2);
+      const std::string name = "flattening, nu = " + nu_text;
+      passed &= check_convergence(pcout, name, errors, 0.8, "|ratio - 1|", 2e-2);
       if (nu == 0.)
-        {
-          passed &= test::check_above(pcout,
-                                      name + ": interior density, observed order at "
-                                             "the last pair",
-                                      test::observed_order(interior_errors[n_levels - 2],
-                                                           interior_errors[n_levels - 1]),
-                                      1.5);
-          passed &= test::check_below(pcout,
-                                      name + ": interior density, |ratio - 1| at the "
-                                             "finest level",
-                                      interior_errors.back(),
-                                      1e-4);
-        }
+        passed &= check_interior_density(pcout, name, interior_errors);
     }
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

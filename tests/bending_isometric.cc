@@ -40,17 +40,14 @@
 
 #include <deal.II/base/quadrature_lib.h>
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
-#include <filesystem>
 #include <iomanip>
-#include <iostream>
-#include <sstream>
 #include <vector>
 
 using namespace clothsim;
-using clothsim::test::number;
+using namespace clothsim::test;
 
 namespace
 {
@@ -83,18 +80,14 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout = env.pcout;
 
-  const std::string scene_file =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/tests/scenes/bending_isometric.prm";
-  const std::string directory =
-    std::filesystem::temp_directory_path() / "clothsim-bending-isometric";
-  const double D = 1., R = 0.5, kappa = 1. / R, area = 1., epsilon = 0.05;
-  const double cylinder_energy = 0.5 * D * kappa * kappa * area;
-  const double twist_energy    = D * epsilon * epsilon * twist_integral(epsilon);
+  const std::string scene_file = source_path("tests/scenes/bending_isometric.prm");
+  const std::string directory  = scratch_directory("clothsim-bending-isometric");
+  const double      D = 1., R = 0.5, kappa = 1. / R, area = 1., epsilon = 0.05;
+  const double      cylinder_energy = 0.5 * D * kappa * kappa * area;
+  const double      twist_energy    = D * epsilon * epsilon * twist_integral(epsilon);
 
   struct Case
   {
@@ -151,66 +144,36 @@ main(int argc, char **argv)
         pcout << "\nbeta = 0: pure bending, a strip bent into a circular arc of "
                  "curvature kappa = "
               << kappa << " 1/m stores D kappa² A / 2 = " << cylinder_energy << " J";
-      pcout << "\n"
-            << c.name << " (exact energy " << std::setprecision(10) << c.exact_energy
-            << " J)\nlevel  vertices  energy (J)      ratio         |ratio - 1|  order\n";
+      print_energy_table_head(pcout, c.name, c.exact_energy);
       std::vector<double> errors, interior_errors;
       for (unsigned int level = 0; level < n_levels; ++level)
         {
-          const test::SceneRun run =
-            test::run_scene(scene_file,
-                            {"Mesh/Global refinements=" + std::to_string(level),
-                             "Constraints/Pinned displacement=" + c.displacement,
-                             "Material/Poisson ratio=" + number(c.poisson_ratio)},
-                            directory,
-                            communicator);
-          const double energy = run.elastic_energy();
-          const double ratio  = energy / c.exact_energy;
-          errors.push_back(std::abs(ratio - 1.));
-          pcout << std::setw(5) << level << std::setw(10) << run.model().n_vertices()
-                << std::setw(16) << std::setprecision(10) << energy << std::setw(14)
-                << std::setprecision(8) << ratio << std::setw(13) << std::setprecision(3)
-                << errors.back();
-          if (level > 0)
-            pcout << std::setw(7) << std::setprecision(3)
-                  << test::observed_order(errors[level - 1], errors[level]);
+          const SceneRun run =
+            run_scene(scene_file,
+                      {"Mesh/Global refinements=" + std::to_string(level),
+                       "Constraints/Pinned displacement=" + c.displacement,
+                       "Material/Poisson ratio=" + number(c.poisson_ratio)},
+                      directory,
+                      env.communicator);
+          print_energy_level(pcout, level, run, c.exact_energy, errors);
           if (c.interior)
-            {
-              const double density_ratio =
-                test::interior_energy_density(run,
-                                              D,
-                                              [](const Point<3> &X) {
-                                                return X[0] > 0.2 && X[0] < 0.8 &&
-                                                       X[1] > 0.2 && X[1] < 0.8;
-                                              }) /
-                (c.exact_energy / area);
-              interior_errors.push_back(std::abs(density_ratio - 1.));
-              pcout << "\n       inside [0.2, 0.8]²: energy density ratio "
-                    << std::setprecision(8) << density_ratio << ", |ratio - 1| "
-                    << std::setprecision(3) << interior_errors.back();
-              if (level > 0)
-                pcout << ", order "
-                      << test::observed_order(interior_errors[level - 1],
-                                              interior_errors[level]);
-            }
+            print_interior_density_level(
+              pcout,
+              "inside [0.2, 0.8]²",
+              level,
+              run,
+              D,
+              c.exact_energy / area,
+              [](const Point<3> &X) {
+                return X[0] > 0.2 && X[0] < 0.8 && X[1] > 0.2 && X[1] < 0.8;
+              },
+              interior_errors);
           pcout << std::endl;
         }
       if (c.interior)
-        passed &= test::check_above(pcout,
-                                    c.name + ": interior density, observed order at the "
-                                             "last pair",
-                                    test::observed_order(interior_errors[n_levels - 2],
-                                                         interior_errors[n_levels - 1]),
-                                    1.5);
-      if (c.interior)
-        passed &= test::check_below(pcout,
-                                    c.name + ": interior density, |ratio - 1| at the "
-                                             "finest level",
-                                    interior_errors.back(),
-                                    1e-4);
-      passed &= test::check_convergence(
-        pcout, c.name, errors, 0.8, "|ratio - 1|", c.finest_bound);
+        passed &= check_interior_density(pcout, c.name, interior_errors);
+      passed &=
+        check_convergence(pcout, c.name, errors, 0.8, "|ratio - 1|", c.finest_bound);
     }
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

@@ -20,29 +20,24 @@
 //     wrong rigidity, load or boundary condition moves the result by far more.
 // The centre probe must sit exactly on (0.5, 0.5).
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
-#include <filesystem>
 #include <iomanip>
-#include <iostream>
 #include <vector>
 
 using namespace clothsim;
+using namespace clothsim::test;
 
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout = env.pcout;
 
-  const std::string scene_file =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/tests/scenes/bending_plate.prm";
-  const std::string directory =
-    std::filesystem::temp_directory_path() / "clothsim-bending-plate";
-  const double a = 1., D = 1., q = 0.01;
+  const std::string scene_file = source_path("tests/scenes/bending_plate.prm");
+  const std::string directory  = scratch_directory("clothsim-bending-plate");
+  const double      a = 1., D = 1., q = 0.01;
 
   struct Case
   {
@@ -81,8 +76,8 @@ main(int argc, char **argv)
         {
           std::vector<std::string> overrides = c.overrides;
           overrides.push_back("Mesh/Global refinements=" + std::to_string(level));
-          const test::SceneRun run =
-            test::run_scene(scene_file, overrides, directory, communicator);
+          const SceneRun run =
+            run_scene(scene_file, overrides, directory, env.communicator);
           if (run.probe_point("centre").distance(Point<3>(0.5, 0.5, 0.)) > 1e-14)
             {
               pcout << "the centre probe is not at (0.5, 0.5): "
@@ -96,12 +91,11 @@ main(int argc, char **argv)
                 << std::setprecision(3) << errors.back();
           if (level > 0)
             pcout << std::setw(7) << std::setprecision(3)
-                  << test::observed_order(errors[level - 1], errors[level]);
+                  << observed_order(errors[level - 1], errors[level]);
           pcout << std::endl;
         }
-      passed &= test::check_convergence(
-        pcout, c.name, errors, 1.5, "relative error", c.finest_bound);
+      passed &=
+        check_convergence(pcout, c.name, errors, 1.5, "relative error", c.finest_bound);
     }
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

@@ -9,12 +9,10 @@
 // - the whole-mesh largest position difference at the last time, relative to the sheet
 //   size, is below MESH_BOUND.
 
-#include "csv.h"
+#include "test_support.h"
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
-#include <iostream>
 #include <map>
 
 using namespace clothsim::test;
@@ -33,13 +31,6 @@ namespace
         sag[csv.rows[r][csv.column("probe")]] = csv.number(r, "uz");
     return sag;
   }
-
-  bool
-  check(const bool holds, const std::string &what)
-  {
-    std::cout << (holds ? "  ok    " : "  FAIL  ") << what << std::endl;
-    return holds;
-  }
 } // namespace
 
 
@@ -51,16 +42,18 @@ main(int argc, char **argv)
       std::cerr << "usage: check_comparison DIR EXPECTED_RATIO TOLERANCE MESH_BOUND\n";
       return 2;
     }
-  const std::string directory  = argv[1];
-  const double      expected   = std::stod(argv[2]);
-  const double      tolerance  = std::stod(argv[3]);
-  const double      mesh_bound = std::stod(argv[4]);
-  bool              passed     = true;
+  const std::string  directory  = argv[1];
+  const double       expected   = std::stod(argv[2]);
+  const double       tolerance  = std::stod(argv[3]);
+  const double       mesh_bound = std::stod(argv[4]);
+  ConditionalOStream out(std::cout);
+  bool               passed = true;
 
   const Csv runtimes = read_csv(directory + "/runtimes.csv");
-  passed &= check(runtimes.rows.size() == 2, "runtimes.csv has one row per model");
+  passed &= check(out, runtimes.rows.size() == 2, "runtimes.csv has one row per model");
   for (const auto &row : runtimes.rows)
-    passed &= check(row.at(runtimes.column("completed")) == "true",
+    passed &= check(out,
+                    row.at(runtimes.column("completed")) == "true",
                     row.at(0) + " run completed in " +
                       row.at(runtimes.column("wall_seconds")) + " s");
 
@@ -68,7 +61,7 @@ main(int argc, char **argv)
   char          signature[8] = {};
   png.read(signature, 8);
   passed &=
-    check(png && std::string(signature + 1, 3) == "PNG", "comparison.png is a PNG");
+    check(out, png && std::string(signature + 1, 3) == "PNG", "comparison.png is a PNG");
 
   const Csv    comparison = read_csv(directory + "/comparison.csv");
   const double last_time  = comparison.number(comparison.rows.size() - 1, "time");
@@ -77,7 +70,8 @@ main(int argc, char **argv)
     if (comparison.number(r, "time") == last_time &&
         comparison.rows[r][comparison.column("quantity")] == "mesh_max")
       mesh_max = comparison.number(r, "relative_difference");
-  passed &= check(mesh_max >= 0. && mesh_max < mesh_bound,
+  passed &= check(out,
+                  mesh_max >= 0. && mesh_max < mesh_bound,
                   "largest position difference at t = " + std::to_string(last_time) +
                     " s: " + std::to_string(100. * mesh_max) + " % of the sheet size < " +
                     std::to_string(100. * mesh_bound) + " %");
@@ -88,11 +82,11 @@ main(int argc, char **argv)
     {
       const double ratio = ms.at(probe) / sag;
       passed &=
-        check(std::abs(ratio - expected) < tolerance,
+        check(out,
+              std::abs(ratio - expected) < tolerance,
               "probe " + probe + ": sag fem " + std::to_string(sag) + " m, mass-spring " +
                 std::to_string(ms.at(probe)) + " m, ratio " + std::to_string(ratio) +
                 " = " + std::to_string(expected) + " +- " + std::to_string(tolerance));
     }
-  std::cout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(out, passed);
 }

@@ -9,24 +9,16 @@
 //     error is finite and positive; the on_front flags are exactly the runs that no
 //     other run beats in both runtime and error; pareto.png is a PNG.
 
-#include "csv.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <fstream>
-#include <iostream>
 #include <limits>
 
 using namespace clothsim::test;
 
 namespace
 {
-  bool
-  check(const bool holds, const std::string &what)
-  {
-    std::cout << (holds ? "  ok    " : "  FAIL  ") << what << std::endl;
-    return holds;
-  }
-
   bool
   is_png(const std::string &file)
   {
@@ -37,11 +29,12 @@ namespace
   }
 
   bool
-  check_convergence(const std::string &directory,
-                    const std::string &quantity,
-                    const double       min_order,
-                    const double       max_order,
-                    const double       finest_bound)
+  check_convergence_study(ConditionalOStream &out,
+                          const std::string  &directory,
+                          const std::string  &quantity,
+                          const double        min_order,
+                          const double        max_order,
+                          const double        finest_bound)
   {
     const Csv csv    = read_csv(directory + "/convergence.csv");
     bool      passed = true;
@@ -50,7 +43,7 @@ namespace
     for (unsigned int r = 0; r < csv.rows.size(); ++r)
       if (csv.rows[r][csv.column("quantity")] == quantity)
         rows.push_back(r);
-    passed &= check(rows.size() >= 2, quantity + ": at least two levels");
+    passed &= check(out, rows.size() >= 2, quantity + ": at least two levels");
     if (rows.size() < 2)
       return false;
     for (unsigned int i = 1; i < rows.size(); ++i)
@@ -60,7 +53,8 @@ namespace
           study == "space"
                  ? csv.number(rows[i], "unknowns") / csv.number(rows[i - 1], "unknowns")
                  : csv.number(rows[i - 1], "size") / csv.number(rows[i], "size");
-        passed &= check(study == "space" ? ratio > 3. && ratio < 5. : ratio == 2.,
+        passed &= check(out,
+                        study == "space" ? ratio > 3. && ratio < 5. : ratio == 2.,
                         "level " + std::to_string(i) + ": " +
                           (study == "space" ? "unknowns grow about fourfold ("
                                             : "step halved (") +
@@ -69,28 +63,34 @@ namespace
     const unsigned int last  = rows.back();
     const double       order = csv.number(last, "observed_order");
     const double       error = csv.number(last, "error");
-    std::cout << "  " << quantity << " at the finest level: error " << error
-              << " m, observed order " << order << " (reference "
-              << csv.rows[last][csv.column("reference")] << ")" << std::endl;
-    passed &= check(order >= min_order && order <= max_order,
+    out << "  " << quantity << " at the finest level: error " << error
+        << " m, observed order " << order << " (reference "
+        << csv.rows[last][csv.column("reference")] << ")" << std::endl;
+    passed &= check(out,
+                    order >= min_order && order <= max_order,
                     "observed order in [" + std::to_string(min_order) + ", " +
                       std::to_string(max_order) + "]");
-    passed &= check(error < finest_bound, "finest error below the bound");
-    passed &= check(is_png(directory + "/convergence.png"), "convergence.png is a PNG");
+    passed &= check(out, error < finest_bound, "finest error below the bound");
+    passed &=
+      check(out, is_png(directory + "/convergence.png"), "convergence.png is a PNG");
     return passed;
   }
 
   bool
-  check_sweep(const std::string &directory, const unsigned int expected_runs)
+  check_sweep(ConditionalOStream &out,
+              const std::string  &directory,
+              const unsigned int  expected_runs)
   {
     const Csv csv    = read_csv(directory + "/pareto.csv");
     bool      passed = true;
-    passed &= check(csv.rows.size() == expected_runs + 1,
+    passed &= check(out,
+                    csv.rows.size() == expected_runs + 1,
                     std::to_string(expected_runs) + " runs and the reference");
     if (csv.rows.size() != expected_runs + 1)
       return false;
     const unsigned int reference = expected_runs;
-    passed &= check(csv.rows[reference][0].find("reference") != std::string::npos &&
+    passed &= check(out,
+                    csv.rows[reference][0].find("reference") != std::string::npos &&
                       csv.number(reference, "error") == 0.,
                     "the last row is the reference, error 0");
     for (unsigned int r = 0; r < expected_runs; ++r)
@@ -98,7 +98,8 @@ namespace
         const double error   = csv.number(r, "error");
         const double runtime = csv.number(r, "runtime_seconds");
         passed &=
-          check(csv.rows[r][csv.column("status")] == "completed" &&
+          check(out,
+                csv.rows[r][csv.column("status")] == "completed" &&
                   std::isfinite(error) && error > 0. && runtime > 0.,
                 "run " + std::to_string(r) + " completed, error " +
                   std::to_string(error) + " m, " + std::to_string(runtime) + " s");
@@ -112,11 +113,12 @@ namespace
                          (other_error < error || other_runtime < runtime));
           }
         const bool flagged = csv.rows[r][csv.column("on_front")] == "true";
-        passed &= check(flagged == !beaten,
+        passed &= check(out,
+                        flagged == !beaten,
                         "run " + std::to_string(r) + (beaten ? " is beaten" : " is not") +
                           " and flagged accordingly");
       }
-    passed &= check(is_png(directory + "/pareto.png"), "pareto.png is a PNG");
+    passed &= check(out, is_png(directory + "/pareto.png"), "pareto.png is a PNG");
     return passed;
   }
 } // namespace
@@ -125,19 +127,19 @@ namespace
 int
 main(int argc, char **argv)
 {
-  const std::string mode = argc > 1 ? argv[1] : "";
-  bool              passed;
+  ConditionalOStream out(std::cout);
+  const std::string  mode = argc > 1 ? argv[1] : "";
+  bool               passed;
   if (mode == "convergence" && argc == 7)
-    passed = check_convergence(
-      argv[2], argv[3], std::stod(argv[4]), std::stod(argv[5]), std::stod(argv[6]));
+    passed = check_convergence_study(
+      out, argv[2], argv[3], std::stod(argv[4]), std::stod(argv[5]), std::stod(argv[6]));
   else if (mode == "sweep" && argc == 4)
-    passed = check_sweep(argv[2], std::stoul(argv[3]));
+    passed = check_sweep(out, argv[2], std::stoul(argv[3]));
   else
     {
       std::cerr << "usage: check_studies convergence DIR QUANTITY MIN MAX BOUND\n"
                    "       check_studies sweep DIR RUNS\n";
       return 2;
     }
-  std::cout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(out, passed);
 }

@@ -9,45 +9,29 @@
 // increases from
 //    one step to the next (backward Euler dissipates; the pins do no work).
 
-#include <deal.II/base/mpi.h>
-
-#include "app/application.h"
-#include "csv.h"
+#include "test_support.h"
 
 #include <cmath>
-#include <filesystem>
-#include <iostream>
 
 using namespace clothsim;
-
-namespace
-{
-  int
-  run(const std::vector<std::string> &arguments)
-  {
-    std::vector<const char *> argv = {"clothsim"};
-    for (const std::string &argument : arguments)
-      argv.push_back(argument.c_str());
-    return run_application(argv.size(), argv.data());
-  }
-} // namespace
+using namespace clothsim::test;
 
 int
 main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const std::string                        source = CLOTHSIM_SOURCE_DIR;
-  const std::string output = std::filesystem::temp_directory_path() / "clothsim-energy";
-  bool              passed = true;
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout  = env.pcout;
+  const std::string   output = scratch_directory("clothsim-energy");
+  bool                passed = true;
 
   // 1. Free fall.
-  if (run({source + "/tests/scenes/free_fall.prm",
-           "--output-dir",
-           output + "/free_fall"}) != 0)
+  if (run_clothsim({source_path("tests/scenes/free_fall.prm"),
+                    "--output-dir",
+                    output + "/free_fall"}) != 0)
     return 1;
   {
-    const auto   probes = test::read_csv(output + "/free_fall/probes.csv");
-    const auto   stats  = test::read_csv(output + "/free_fall/statistics.csv");
+    const auto   probes = read_csv(output + "/free_fall/probes.csv");
+    const auto   stats  = read_csv(output + "/free_fall/statistics.csv");
     const double g = 9.81, dt = 0.01;
     double       worst_discrete = 0., worst_offset = 0., worst_lateral = 0.;
     for (unsigned int r = 0; r < probes.rows.size(); ++r)
@@ -74,28 +58,27 @@ main(int argc, char **argv)
       worst_elastic =
         std::max(worst_elastic, std::abs(stats.number(r, "elastic_energy")));
     const double final_time = probes.number(probes.rows.size() - 1, "time");
-    std::cout << "free fall: " << probes.rows.size()
-              << " probe rows up to t = " << final_time
-              << " s\n  worst relative deviation from the discrete free fall "
-              << worst_discrete
-              << "\n  worst relative deviation of (u - (-g t²/2)) from -g t dt/2 "
-              << worst_offset << "\n  largest lateral displacement " << worst_lateral
-              << " m, largest elastic energy " << worst_elastic << " J" << std::endl;
+    pcout << "free fall: " << probes.rows.size() << " probe rows up to t = " << final_time
+          << " s\n  worst relative deviation from the discrete free fall "
+          << worst_discrete
+          << "\n  worst relative deviation of (u - (-g t²/2)) from -g t dt/2 "
+          << worst_offset << "\n  largest lateral displacement " << worst_lateral
+          << " m, largest elastic energy " << worst_elastic << " J" << std::endl;
     passed = passed && final_time > 0.499 && worst_discrete < 1e-10 &&
              worst_offset < 1e-8 && worst_lateral < 1e-12 && worst_elastic < 1e-20;
   }
 
   // 2. Damped default scene, first 0.5 s: total energy non-increasing.
-  if (run({source + "/params/default.prm",
-           "--set",
-           "Time/End time=0.5",
-           "--set",
-           "Output/Write VTK=false",
-           "--output-dir",
-           output + "/damped"}) != 0)
+  if (run_clothsim({source_path("params/default.prm"),
+                    "--set",
+                    "Time/End time=0.5",
+                    "--set",
+                    "Output/Write VTK=false",
+                    "--output-dir",
+                    output + "/damped"}) != 0)
     return 1;
   {
-    const auto stats        = test::read_csv(output + "/damped/statistics.csv");
+    const auto stats        = read_csv(output + "/damped/statistics.csv");
     double     largest_rise = -1e300;
     double     energy_scale = 0.;
     for (unsigned int r = 0; r < stats.rows.size(); ++r)
@@ -107,14 +90,13 @@ main(int argc, char **argv)
                  stats.number(r, "total_energy") - stats.number(r - 1, "total_energy"));
     const double drop = stats.number(0, "total_energy") -
                         stats.number(stats.rows.size() - 1, "total_energy");
-    std::cout << "damped hanging sheet: " << stats.rows.size() - 1
-              << " steps, largest step-to-step rise of the total energy " << largest_rise
-              << " J (energy scale " << energy_scale << " J), total dissipated " << drop
-              << " J" << std::endl;
+    pcout << "damped hanging sheet: " << stats.rows.size() - 1
+          << " steps, largest step-to-step rise of the total energy " << largest_rise
+          << " J (energy scale " << energy_scale << " J), total dissipated " << drop
+          << " J" << std::endl;
     // Round-off allowance: 1e-9 of the energy scale.
     passed = passed && largest_rise <= 1e-9 * energy_scale && drop > 0.;
   }
 
-  std::cout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

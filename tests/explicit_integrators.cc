@@ -11,33 +11,15 @@
 //    model. (Measured: the mass-spring run diverges at 1.2 already, within 90 steps;
 //    the membrane's at 1.2 grows too slowly to show within 0.1 s.)
 
-#include "csv.h"
-#include "scene_run.h"
+#include "test_support.h"
 
 using namespace clothsim;
 using namespace clothsim::test;
 
 namespace
 {
-  const std::string default_prm =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/params/default.prm";
-  const std::string directory =
-    std::filesystem::temp_directory_path() / "clothsim-explicit-integrators";
-
-  // Largest |H_n - H_0| over a run's statistics.csv, and the largest kinetic energy.
-  std::pair<double, double>
-  energy_drift(const std::string &statistics)
-  {
-    const Csv    csv     = read_csv(statistics);
-    const double initial = csv.number(0, "total_energy");
-    double       drift = 0., kinetic = 0.;
-    for (unsigned int r = 0; r < csv.rows.size(); ++r)
-      {
-        drift   = std::max(drift, std::abs(csv.number(r, "total_energy") - initial));
-        kinetic = std::max(kinetic, csv.number(r, "kinetic_energy"));
-      }
-    return {drift, kinetic};
-  }
+  const std::string default_prm = source_path("params/default.prm");
+  const std::string directory   = scratch_directory("clothsim-explicit-integrators");
 
   bool
   check_energy(ConditionalOStream &pcout, const MPI_Comm communicator)
@@ -57,11 +39,11 @@ namespace
                        "Damping/Stiffness proportional=0"},
                       directory,
                       communicator);
-            const auto [drift, kinetic] = energy_drift(directory + "/statistics.csv");
+            const EnergyDrift energy = energy_drift(directory + "/statistics.csv");
             pcout << "  " << integrator << ", dt = " << dt << " s: largest energy drift "
-                  << drift << " J (largest kinetic energy " << kinetic << " J)"
-                  << std::endl;
-            drifts.push_back(drift);
+                  << energy.drift << " J (largest kinetic energy "
+                  << energy.largest_kinetic << " J)" << std::endl;
+            drifts.push_back(energy.drift);
           }
         const double order    = integrator == "velocity verlet" ? 2. : 1.;
         const double observed = observed_order(drifts[1], drifts[2]);
@@ -115,11 +97,10 @@ namespace
                 diverged = true;
                 pcout << "  stopped: " << error.what() << std::endl;
               }
-            const bool expected = factor > 1.;
-            pcout << (diverged == expected ? "  ok    " : "  FAIL  ") << model << " at "
-                  << factor << " x the critical step: "
-                  << (diverged ? "diverged, stopped" : "completed") << std::endl;
-            passed &= diverged == expected;
+            std::ostringstream what;
+            what << model << " at " << factor << " x the critical step: "
+                 << (diverged ? "diverged, stopped" : "completed");
+            passed &= check(pcout, diverged == (factor > 1.), what.str());
           }
       }
     return passed;
@@ -130,14 +111,10 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
-  pcout << "1. energy drift of the undamped hanging sheet (mass-spring)" << std::endl;
-  bool passed = check_energy(pcout, communicator);
-  pcout << "2. stability limit with the scene's damping" << std::endl;
-  passed &= check_stability_limit(pcout, communicator);
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  Environment env(argc, argv);
+  env.pcout << "1. energy drift of the undamped hanging sheet (mass-spring)" << std::endl;
+  bool passed = check_energy(env.pcout, env.communicator);
+  env.pcout << "2. stability limit with the scene's damping" << std::endl;
+  passed &= check_stability_limit(env.pcout, env.communicator);
+  return finish(env.pcout, passed);
 }

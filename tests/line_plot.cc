@@ -8,6 +8,7 @@
 // the second.
 
 #include "io/line_plot.h"
+#include "test_support.h"
 
 #include <unistd.h>
 #include <zlib.h>
@@ -26,50 +27,10 @@
 #include <vector>
 
 using namespace clothsim::io;
+using namespace clothsim::test;
 
 namespace
 {
-  unsigned int n_checks   = 0;
-  unsigned int n_failures = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    ++n_checks;
-    if (!ok)
-      ++n_failures;
-    std::cout << (ok ? "  ok    " : "  FAIL  ") << what << std::endl;
-  }
-
-  template <typename T>
-  void
-  check_equal(const std::string &what, const T &value, const T &expected)
-  {
-    std::ostringstream text;
-    text << what << " = " << value << " (expected " << expected << ")";
-    check(value == expected, text.str());
-  }
-
-  void
-  check_at_least(const std::string &what, const double value, const double minimum)
-  {
-    std::ostringstream text;
-    text << what << " = " << value << " (expected >= " << minimum << ")";
-    check(value >= minimum, text.str());
-  }
-
-  void
-  check_near(const std::string &what,
-             const double       value,
-             const double       expected,
-             const double       tolerance)
-  {
-    std::ostringstream text;
-    text << what << " = " << value << " (expected " << expected << " +- " << tolerance
-         << ")";
-    check(std::abs(value - expected) <= tolerance, text.str());
-  }
-
   using Color = std::array<unsigned char, 3>;
 
   struct Png
@@ -403,6 +364,7 @@ namespace
 int
 main(int argc, char **argv)
 {
+  ConditionalOStream out(std::cout);
   namespace fs       = std::filesystem;
   const double   nan = std::numeric_limits<double>::quiet_NaN();
   const fs::path directory =
@@ -437,44 +399,57 @@ main(int argc, char **argv)
   diagonal.series = {identity};
 
   const std::string file = argc > 1 ? argv[1] : (directory / "two_panels.png").string();
-  std::cout << "two-panel plot " << file << std::endl;
+  out << "two-panel plot " << file << std::endl;
   write_line_plot(file, {probes, diagonal}, width, panel_height);
   const Png png = read_png(file);
-  check(true, "PNG read back: signature, chunk CRCs, IHDR 8-bit RGB, IDAT, filter 0");
-  check_equal("width", png.width, width);
-  check_equal("height", png.height, 2 * panel_height);
-  check(png.at(0, 0) == Color{{255, 255, 255}}, "top-left corner pixel is white");
-  check(png.at(width - 1, 2 * panel_height - 1) == Color{{255, 255, 255}},
+  check(out,
+        true,
+        "PNG read back: signature, chunk CRCs, IHDR 8-bit RGB, IDAT, filter 0");
+  check_equal(out, "width", png.width, width);
+  check_equal(out, "height", png.height, 2 * panel_height);
+  check(out, png.at(0, 0) == Color{{255, 255, 255}}, "top-left corner pixel is white");
+  check(out,
+        png.at(width - 1, 2 * panel_height - 1) == Color{{255, 255, 255}},
         "bottom-right corner pixel is white");
-  check_at_least("pixels of series 'run A' (solid)", count_color(png, red), width);
-  check_at_least("pixels of series 'run B' (dashed)", count_color(png, blue), width / 2);
-  check_at_least("pixels of series y = x", count_color(png, green), width / 2);
+  check_at_least(out, "pixels of series 'run A' (solid)", count_color(png, red), width);
+  check_at_least(out,
+                 "pixels of series 'run B' (dashed)",
+                 count_color(png, blue),
+                 width / 2);
+  check_at_least(out, "pixels of series y = x", count_color(png, green), width / 2);
 
   const Box box1 = find_box(png, 0, panel_height);
   const Box box2 = find_box(png, panel_height, 2 * panel_height);
-  check(box1.top > 0 && box1.bottom > box1.top + 100 && box1.right > box1.left + 400,
+  check(out,
+        box1.top > 0 && box1.bottom > box1.top + 100 && box1.right > box1.left + 400,
         "axes box found in panel 1");
-  check(box2.top > 0 && box2.bottom > box2.top + 100 && box2.right > box2.left + 400,
+  check(out,
+        box2.top > 0 && box2.bottom > box2.top + 100 && box2.right > box2.left + 400,
         "axes box found in panel 2");
-  check_at_least("dark pixels in the title area above box 1",
+  check_at_least(out,
+                 "dark pixels in the title area above box 1",
                  count_dark(png, 0, 0, width, box1.top),
                  50);
-  check_at_least("dark pixels in the legend (top right of box 1)",
+  check_at_least(out,
+                 "dark pixels in the legend (top right of box 1)",
                  count_dark(png,
                             box1.left + (box1.right - box1.left) / 2,
                             box1.top + 2,
                             box1.right - 1,
                             box1.top + 40),
                  50);
-  check_at_least("dark pixels in the tick labels below box 1",
+  check_at_least(out,
+                 "dark pixels in the tick labels below box 1",
                  count_dark(png, 0, box1.bottom + 6, width, box1.bottom + 20),
                  50);
   const auto centre = centroid(png, green);
-  check_near("y = x centroid x - box 2 centre x",
+  check_near(out,
+             "y = x centroid x - box 2 centre x",
              centre[0] - 0.5 * (box2.left + box2.right),
              0,
              3);
-  check_near("y = x centroid y - box 2 centre y",
+  check_near(out,
+             "y = x centroid y - box 2 centre y",
              centre[1] - 0.5 * (box2.top + box2.bottom),
              0,
              3);
@@ -493,7 +468,8 @@ main(int argc, char **argv)
                   400,
                   200);
   const Png small = read_png(degenerate);
-  check(small.width == 400 && small.height == 800,
+  check(out,
+        small.width == 400 && small.height == 800,
         "degenerate series: 400 x 800 written");
   const Box box = find_box(small, 0, 200);
   // The legend sample of 'constant' is orange as well: only count pixels left of it.
@@ -506,8 +482,9 @@ main(int argc, char **argv)
           sy += y;
           ++n;
         }
-  check_at_least("pixels of the constant series in the left half", n, 100);
-  check_near("constant series y - box centre y",
+  check_at_least(out, "pixels of the constant series in the left half", n, 100);
+  check_near(out,
+             "constant series y - box centre y",
              sy / n - 0.5 * (box.top + box.bottom),
              0,
              1.5);
@@ -558,7 +535,7 @@ main(int argc, char **argv)
   PlotPanel  slim{"factor 1.6", "", "", {slim_series}, false, true};
 
   const std::string log_file = argc > 2 ? argv[2] : (directory / "log_axes.png").string();
-  std::cout << "log plot " << log_file << std::endl;
+  out << "log plot " << log_file << std::endl;
   bool written = false;
   try
     {
@@ -570,19 +547,23 @@ main(int argc, char **argv)
     }
   catch (const std::exception &e)
     {
-      std::cout << "  write_line_plot threw: " << e.what() << std::endl;
+      out << "  write_line_plot threw: " << e.what() << std::endl;
     }
-  check(written, "log plot with non-positive values written without throwing");
+  check(out, written, "log plot with non-positive values written without throwing");
   const Png logs = written ? read_png(log_file) : Png{};
-  check(logs.width == width && logs.height == 5 * panel_height, "log plot: 800 x 1500");
+  check(out,
+        logs.width == width && logs.height == 5 * panel_height,
+        "log plot: 800 x 1500");
   if (logs.width == width && logs.height == 5 * panel_height)
     {
       // Panel 1: every marker a separate cluster at its log-log position.
       const Box lb = find_box(logs, 0, panel_height);
-      check(lb.top > 0 && lb.bottom > lb.top + 100 && lb.right > lb.left + 400,
+      check(out,
+            lb.top > 0 && lb.bottom > lb.top + 100 && lb.right > lb.left + 400,
             "axes box found in the log-log panel");
       const auto markers = clusters(logs, purple, lb);
-      check_equal("separate marker clusters of y = x^-2 (13 points, no line)",
+      check_equal(out,
+                  "separate marker clusters of y = x^-2 (13 points, no line)",
                   markers.size(),
                   std::size_t(13));
       if (markers.size() == 13)
@@ -608,11 +589,12 @@ main(int argc, char **argv)
               worst_dy =
                 std::max(worst_dy, std::abs(markers[i + 1][1] - markers[i][1] - gap_y));
             }
-          check_near("largest |marker x - log-space position| (px)", worst_x, 0, 1);
-          check_near("largest |marker y - log-space position| (px)", worst_y, 0, 1);
-          check_near("largest deviation from equal x spacing (px)", worst_dx, 0, 1);
-          check_near("largest deviation from equal y spacing (px)", worst_dy, 0, 1);
-          check_near("y spacing / x spacing of the markers",
+          check_near(out, "largest |marker x - log-space position| (px)", worst_x, 0, 1);
+          check_near(out, "largest |marker y - log-space position| (px)", worst_y, 0, 1);
+          check_near(out, "largest deviation from equal x spacing (px)", worst_dx, 0, 1);
+          check_near(out, "largest deviation from equal y spacing (px)", worst_dy, 0, 1);
+          check_near(out,
+                     "y spacing / x spacing of the markers",
                      gap_y / gap_x,
                      2. * (lb.bottom - lb.top) / 6.6 / ((lb.right - lb.left) / 3.3),
                      0.02);
@@ -625,9 +607,13 @@ main(int argc, char **argv)
                 for (int x = mx - 3; x <= mx + 3; ++x)
                   between += logs.at(x, y) == purple;
             }
-          check_equal("series pixels midway between neighbouring markers", between, 0u);
+          check_equal(out,
+                      "series pixels midway between neighbouring markers",
+                      between,
+                      0u);
         }
-      check(count_color(logs, purple) <= 13 * 49,
+      check(out,
+            count_color(logs, purple) <= 13 * 49,
             "series pixels of y = x^-2 fit in 13 markers of at most 7 x 7 px");
 
       // Decade ticks and their labels, read back pixel by pixel.
@@ -640,8 +626,10 @@ main(int argc, char **argv)
           x_labels =
             x_labels && text_near(logs, label, x - text_width(label) / 2, lb.bottom + 9);
         }
-      check(x_ticks, "x tick marks at 1e-3, 1e-2, 1e-1, 1e0");
-      check(x_labels, "x tick labels '1e-3', '1e-2', '1e-1', '1e0' under their ticks");
+      check(out, x_ticks, "x tick marks at 1e-3, 1e-2, 1e-1, 1e0");
+      check(out,
+            x_labels,
+            "x tick labels '1e-3', '1e-2', '1e-1', '1e0' under their ticks");
       bool y_labels = true;
       for (int k = 0; k <= 6; ++k)
         {
@@ -650,11 +638,13 @@ main(int argc, char **argv)
           y_labels =
             y_labels && text_near(logs, label, lb.left - 9 - text_width(label), y - 3);
         }
-      check(y_labels, "y tick labels '1e0' ... '1e6' left of their ticks");
-      check_equal("x tick marks under the log-log box (4 decades)",
+      check(out, y_labels, "y tick labels '1e0' ... '1e6' left of their ticks");
+      check_equal(out,
+                  "x tick marks under the log-log box (4 decades)",
                   black_runs(logs, true, lb.bottom + 3, lb.left - 2, lb.right + 2),
                   4u);
-      check(!text_near(logs,
+      check(out,
+            !text_near(logs,
                        "0.01",
                        std::lround(pixel(-2, -3.15, 0.15, lb.left, lb.right)) - 11,
                        lb.bottom + 9),
@@ -672,15 +662,18 @@ main(int argc, char **argv)
                                        grey_fraction(logs, lb, true, x),
                                        grey_fraction(logs, lb, true, x + 1)}));
         }
-      check_at_least("grid fraction of the minor x lines at 2, 3, 5, 9 x 1e-2",
+      check_at_least(out,
+                     "grid fraction of the minor x lines at 2, 3, 5, 9 x 1e-2",
                      minor_x,
                      0.9);
       const int x15 =
         std::lround(pixel(std::log10(1.5e-2), -3.15, 0.15, lb.left, lb.right));
-      check(grey_fraction(logs, lb, true, x15) < 0.2,
+      check(out,
+            grey_fraction(logs, lb, true, x15) < 0.2,
             "no grid line at 1.5e-2 (between two minor lines)");
       const int y200 = std::lround(pixel(std::log10(200.), -0.3, 6.3, lb.bottom, lb.top));
-      check(grey_fraction(logs, lb, false, y200) < 0.3,
+      check(out,
+            grey_fraction(logs, lb, false, y200) < 0.3,
             "no minor y grid line at 200 (decades too close)");
 
       // Panel 2: two labelled ticks on each narrow log axis: x at 5 and 6, y at 2 and 5.
@@ -691,11 +684,15 @@ main(int argc, char **argv)
           {std::log10(a) - 0.05 * span, std::log10(b) + 0.05 * span}};
       };
       const Box nb = find_box(logs, panel_height, 2 * panel_height);
-      check(nb.top > 0 && nb.right > nb.left + 400, "axes box found in the narrow panel");
-      check_equal("x tick marks of the narrow log x axis [4.2, 6.5]",
+      check(out,
+            nb.top > 0 && nb.right > nb.left + 400,
+            "axes box found in the narrow panel");
+      check_equal(out,
+                  "x tick marks of the narrow log x axis [4.2, 6.5]",
                   black_runs(logs, true, nb.bottom + 3, nb.left - 2, nb.right + 2),
                   2u);
-      check_equal("y tick marks of the narrow log y axis [2, 7]",
+      check_equal(out,
+                  "y tick marks of the narrow log y axis [2, 7]",
                   black_runs(logs, false, nb.left - 3, nb.top - 2, nb.bottom + 2),
                   2u);
       const auto nx = log_range(4.2, 6.5), ny = log_range(2., 7.);
@@ -707,7 +704,7 @@ main(int argc, char **argv)
           const std::string label = std::to_string(m) + "e0";
           five_six = five_six && text_near(logs, label, x - 8, nb.bottom + 9);
         }
-      check(five_six, "narrow log x axis labels '5e0' and '6e0'");
+      check(out, five_six, "narrow log x axis labels '5e0' and '6e0'");
       for (const int m : {2, 5})
         {
           const int y =
@@ -716,20 +713,25 @@ main(int argc, char **argv)
           two_five =
             two_five && text_near(logs, label, nb.left - 9 - text_width(label), y - 3);
         }
-      check(two_five, "narrow log y axis labels '2e0' and '5e0'");
-      check_equal("marker clusters of the narrow line+markers series (line joins them)",
+      check(out, two_five, "narrow log y axis labels '2e0' and '5e0'");
+      check_equal(out,
+                  "marker clusters of the narrow line+markers series (line joins them)",
                   clusters(logs, orange, nb).size(),
                   std::size_t(1));
 
       // Panel 3: the line breaks at the non-positive value; legend samples.
       const Box mb = find_box(logs, 2 * panel_height, 3 * panel_height);
-      check(mb.top > 0 && mb.right > mb.left + 400, "axes box found in the mixed panel");
+      check(out,
+            mb.top > 0 && mb.right > mb.left + 400,
+            "axes box found in the mixed panel");
       const int x2 = std::lround(pixel(2., -0.2, 4.2, mb.left, mb.right));
-      check_equal("line pixels at x = 2, where y = -1 breaks the line",
+      check_equal(out,
+                  "line pixels at x = 2, where y = -1 breaks the line",
                   extent(logs, red, x2 - 3, mb.top + 1, x2 + 3, mb.bottom - 1)[1],
                   0);
       const int x1 = std::lround(pixel(1., -0.2, 4.2, mb.left, mb.right));
-      check_at_least("line pixels at x = 1 (before the break)",
+      check_at_least(out,
+                     "line pixels at x = 1 (before the break)",
                      extent(logs, red, x1 - 3, mb.top + 1, x1 + 3, mb.bottom - 1)[1],
                      1);
       const int  middle = (mb.left + mb.right) / 2;
@@ -738,28 +740,34 @@ main(int argc, char **argv)
       };
       const auto line_sample = legend(red), scatter_sample = legend(blue),
                  both_sample = legend(green);
-      check(line_sample[0] >= 20 && line_sample[1] <= 2,
+      check(out,
+            line_sample[0] >= 20 && line_sample[1] <= 2,
             "legend of the line series: a line sample, 2 px high");
-      check(scatter_sample[0] >= 5 && scatter_sample[0] <= 7 && scatter_sample[1] >= 5 &&
+      check(out,
+            scatter_sample[0] >= 5 && scatter_sample[0] <= 7 && scatter_sample[1] >= 5 &&
               scatter_sample[1] <= 7,
             "legend of the scatter series: a marker only, about 6 x 6 px");
-      check(both_sample[0] >= 20 && both_sample[1] >= 5 && both_sample[1] <= 7,
+      check(out,
+            both_sample[0] >= 20 && both_sample[1] >= 5 && both_sample[1] <= 7,
             "legend of the line+markers series: a line sample with a marker");
       check_equal(
+        out,
         "scatter markers in the mixed panel (3 points, no line)",
         clusters(logs, blue, Box{mb.left, middle, mb.top + 60, mb.bottom}).size(),
         std::size_t(3));
 
       // Panel 4: no positive data: an empty box with default decade ticks.
       const Box eb = find_box(logs, 3 * panel_height, 4 * panel_height);
-      check(eb.top > 0 && eb.right > eb.left + 400 &&
+      check(out,
+            eb.top > 0 && eb.right > eb.left + 400 &&
               black_runs(logs, true, eb.bottom + 3, eb.left - 2, eb.right + 2) >= 2,
             "panel without positive data: box and at least two ticks");
 
       // Panel 5: linear ticks on a log axis less than a factor 2 wide.
       const Box  sb = find_box(logs, 4 * panel_height, 5 * panel_height);
       const auto sy = log_range(1.1, 1.8);
-      check_equal("y tick marks of the log y axis [1.1, 1.8]",
+      check_equal(out,
+                  "y tick marks of the log y axis [1.1, 1.8]",
                   black_runs(logs, false, sb.left - 3, sb.top - 2, sb.bottom + 2),
                   4u);
       bool linear_labels = true;
@@ -770,7 +778,9 @@ main(int argc, char **argv)
           linear_labels = linear_labels &&
                           text_near(logs, label, sb.left - 9 - text_width(label), y - 3);
         }
-      check(linear_labels, "log y axis [1.1, 1.8] labels '1.2', '1.4', '1.6', '1.8'");
+      check(out,
+            linear_labels,
+            "log y axis [1.1, 1.8] labels '1.2', '1.4', '1.6', '1.8'");
     }
 
   // A path that cannot be written.
@@ -778,16 +788,15 @@ main(int argc, char **argv)
   try
     {
       write_line_plot(bad, {probes});
-      check(false, "writing into a missing directory throws");
+      check(out, false, "writing into a missing directory throws");
     }
   catch (const std::runtime_error &e)
     {
-      check(std::string(e.what()).find(bad) != std::string::npos,
+      check(out,
+            std::string(e.what()).find(bad) != std::string::npos,
             std::string("writing into a missing directory throws: ") + e.what());
     }
 
   fs::remove_all(directory);
-  std::cout << n_checks - n_failures << " of " << n_checks << " checks passed"
-            << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return finish_tally(out);
 }

@@ -19,7 +19,7 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/grid/tria_description.h>
 
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <random>
 
@@ -28,8 +28,7 @@ using namespace clothsim::test;
 
 namespace
 {
-  const std::string default_prm =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/params/default.prm";
+  const std::string default_prm = source_path("params/default.prm");
 
   Parameters
   default_parameters()
@@ -255,10 +254,9 @@ namespace
   check_unstructured(ConditionalOStream &pcout, const MPI_Comm communicator)
   {
     const double      nu = 0.3, k_m = 100., strain = 1e-3, length = 2., width = 0.5;
-    const std::string directory =
-      std::filesystem::temp_directory_path() / "clothsim-mass-spring-uniaxial";
-    SceneRun run =
-      run_scene(std::string(CLOTHSIM_SOURCE_DIR) + "/tests/scenes/uniaxial_stretch.prm",
+    const std::string directory = scratch_directory("clothsim-mass-spring-uniaxial");
+    SceneRun          run =
+      run_scene(source_path("tests/scenes/uniaxial_stretch.prm"),
                 {"Model=mass-spring", "Constraints/Pinned displacement=0.001*x*t; 0; 0"},
                 directory,
                 communicator);
@@ -355,14 +353,10 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
-  bool                             passed = check_derivatives(pcout, communicator);
-  passed &= check_equilateral(pcout, communicator);
-  passed &= check_unstructured(pcout, communicator);
-  passed &= check_strain_limit(pcout, communicator);
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  Environment env(argc, argv);
+  bool        passed = check_derivatives(env.pcout, env.communicator);
+  passed &= check_equilateral(env.pcout, env.communicator);
+  passed &= check_unstructured(env.pcout, env.communicator);
+  passed &= check_strain_limit(env.pcout, env.communicator);
+  return finish(env.pcout, passed);
 }

@@ -5,8 +5,8 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
-#include "eigenvalues.h"
 #include "physics/membrane.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <iostream>
@@ -14,18 +14,7 @@
 #include <random>
 
 using namespace clothsim::physics;
-
-namespace
-{
-  double
-  norm(const ElementVector &v)
-  {
-    double sum = 0.;
-    for (const double x : v)
-      sum += x * x;
-    return std::sqrt(sum);
-  }
-} // namespace
+using namespace clothsim::test;
 
 int
 main()
@@ -85,7 +74,7 @@ main()
       ElementVector difference;
       for (unsigned int i = 0; i < 9; ++i)
         difference[i] = gradient[i] - fd_gradient[i];
-      const double gradient_error = norm(difference) / norm(gradient);
+      const double gradient_error = l2_norm(difference) / l2_norm(gradient);
       double       hessian_norm = 0., hessian_difference = 0.;
       for (unsigned int i = 0; i < 9; ++i)
         for (unsigned int j = 0; j < 9; ++j)
@@ -106,7 +95,7 @@ main()
       // Projected tangent (floor 0): positive semi-definite.
       ElementMatrix projected;
       membrane_energy_gradient_hessian(material, rest, current, 0., gradient, &projected);
-      const auto [smallest, largest] = clothsim::test::extreme_eigenvalues(projected);
+      const auto [smallest, largest] = extreme_eigenvalues(projected);
       most_negative                  = std::min(most_negative, smallest / largest);
       if (smallest < -1e-10 * largest)
         {

@@ -3,11 +3,11 @@
 // (surface groups) and point groups, that bad meshes are rejected with a telling
 // InputError, and that a .msh is generated from a .geo.
 
+#include <deal.II/grid/tria.h>
+
 #include "io/input_error.h"
 #include "mesh/gmsh_reader.h"
-
-#include <deal.II/base/mpi.h>
-#include <deal.II/grid/tria.h>
+#include "test_support.h"
 
 #include <unistd.h>
 
@@ -23,44 +23,10 @@
 
 using namespace dealii;
 using namespace clothsim;
+using namespace clothsim::test;
 
 namespace
 {
-  unsigned int n_checks   = 0;
-  unsigned int n_failures = 0;
-
-  void
-  check(const bool ok, const std::string &what)
-  {
-    ++n_checks;
-    if (!ok)
-      ++n_failures;
-    std::cout << (ok ? "  ok    " : "  FAIL  ") << what << std::endl;
-  }
-
-  template <typename T>
-  void
-  check_equal(const std::string &what, const T &value, const T &expected)
-  {
-    std::ostringstream text;
-    text << what << " = " << value << " (expected " << expected << ")";
-    check(value == expected, text.str());
-  }
-
-  void
-  check_near(const std::string &what,
-             const double       value,
-             const double       expected,
-             const double       tolerance)
-  {
-    std::ostringstream text;
-    text.precision(16);
-    text << what << " = " << value << " (expected " << expected << " +- " << tolerance
-         << ")";
-    check(std::abs(value - expected) <= tolerance, text.str());
-  }
-
-
   double
   total_area(const Triangulation<2, 3> &triangulation)
   {
@@ -159,14 +125,16 @@ namespace
 
   // read_gmsh(file) must throw an InputError naming the file and containing all `words`.
   void
-  check_rejected(const std::string &file, const std::vector<std::string> &words)
+  check_rejected(ConditionalOStream             &out,
+                 const std::string              &file,
+                 const std::vector<std::string> &words)
   {
     const std::string name = std::filesystem::path(file).filename().string();
     try
       {
         Triangulation<2, 3> triangulation;
         mesh::read_gmsh(file, triangulation);
-        check(false, name + ": rejected (but it was accepted)");
+        check(out, false, name + ": rejected (but it was accepted)");
       }
     catch (const InputError &error)
       {
@@ -174,122 +142,143 @@ namespace
         bool              ok      = contains(message, file) && error.file == file;
         for (const std::string &word : words)
           ok = ok && contains(message, word);
-        check(ok, name + ": rejected with \"" + message + "\"");
+        check(out, ok, name + ": rejected with \"" + message + "\"");
       }
   }
 
 
   void
-  test_square(const std::string &data)
+  test_square(ConditionalOStream &out, const std::string &data)
   {
-    std::cout << "square.msh (gmsh 2.2, 3x3 nodes + 1 unused node, 8 triangles):"
-              << std::endl;
+    out << "square.msh (gmsh 2.2, 3x3 nodes + 1 unused node, 8 triangles):" << std::endl;
     // Surface groups: "half" (tag 32) = the 4 triangles of the bottom half, "cloth" (tag
     // 31) = the 2 of the top-left quarter; the 2 of the top-right quarter are in none.
     Triangulation<2, 3>    triangulation;
     const mesh::MeshGroups groups = mesh::read_gmsh(data + "/square.msh", triangulation);
 
-    check_equal("cells", triangulation.n_active_cells(), 8u);
-    check_equal("vertices", triangulation.n_vertices(), 9u);
-    check_equal("used vertices", triangulation.n_used_vertices(), 9u);
-    check_near("total area", total_area(triangulation), 1.0, 1e-12);
+    check_equal(out, "cells", triangulation.n_active_cells(), 8u);
+    check_equal(out, "vertices", triangulation.n_vertices(), 9u);
+    check_equal(out, "used vertices", triangulation.n_used_vertices(), 9u);
+    check_near(out, "total area", total_area(triangulation), 1.0, 1e-12);
     bool all_triangles = true;
     for (const auto &cell : triangulation.active_cell_iterators())
       all_triangles = all_triangles && cell->reference_cell() == ReferenceCells::Triangle;
-    check(all_triangles, "all cells are triangles");
+    check(out, all_triangles, "all cells are triangles");
 
-    check_equal("line groups", groups.line_groups.size(), std::size_t(3));
-    check(groups.line_groups.count("left") == 1 && groups.line_groups.at("left") == 11,
+    check_equal(out, "line groups", groups.line_groups.size(), std::size_t(3));
+    check(out,
+          groups.line_groups.count("left") == 1 && groups.line_groups.at("left") == 11,
           "line group 'left' has boundary id 11 (its physical tag)");
-    check(groups.line_groups.count("bottom") == 1 &&
+    check(out,
+          groups.line_groups.count("bottom") == 1 &&
             groups.line_groups.at("bottom") == 12,
           "line group 'bottom' has boundary id 12");
-    check(groups.line_groups.count("13") == 1 && groups.line_groups.at("13") == 13,
+    check(out,
+          groups.line_groups.count("13") == 1 && groups.line_groups.at("13") == 13,
           "unnamed line group 13 is called '13' with boundary id 13");
     const std::vector<std::string> expected_names = {
       "13", "bottom", "cloth", "corner", "half", "left"};
-    check(groups.all_names() == expected_names,
+    check(out,
+          groups.all_names() == expected_names,
           "all_names() = {13, bottom, cloth, corner, half, left}");
 
-    check_equal("surface groups", groups.surface_groups.size(), std::size_t(2));
-    check(groups.surface_groups.count("cloth") == 1 &&
+    check_equal(out, "surface groups", groups.surface_groups.size(), std::size_t(2));
+    check(out,
+          groups.surface_groups.count("cloth") == 1 &&
             groups.surface_groups.at("cloth") == 31,
           "surface group 'cloth' has material id 31 (its physical tag)");
-    check(groups.surface_groups.count("half") == 1 &&
+    check(out,
+          groups.surface_groups.count("half") == 1 &&
             groups.surface_groups.at("half") == 32,
           "surface group 'half' has material id 32");
     auto materials = count_material_ids(triangulation);
-    check_equal("cells with material id 31 (cloth)", materials[31], 2u);
-    check_equal("cells with material id 32 (half)", materials[32], 4u);
-    check_equal("cells with material id 0 (in no group)", materials[0], 2u);
-    check_equal("distinct material ids", materials.size(), std::size_t(3));
-    check(cells_in_box(triangulation, 32, 0, 1, 0, 0.5),
+    check_equal(out, "cells with material id 31 (cloth)", materials[31], 2u);
+    check_equal(out, "cells with material id 32 (half)", materials[32], 4u);
+    check_equal(out, "cells with material id 0 (in no group)", materials[0], 2u);
+    check_equal(out, "distinct material ids", materials.size(), std::size_t(3));
+    check(out,
+          cells_in_box(triangulation, 32, 0, 1, 0, 0.5),
           "cells with material id 32 lie in the bottom half");
-    check(cells_in_box(triangulation, 31, 0, 0.5, 0.5, 1),
+    check(out,
+          cells_in_box(triangulation, 31, 0, 0.5, 0.5, 1),
           "cells with material id 31 lie in the top-left quarter");
-    check(cells_in_box(triangulation, 0, 0.5, 1, 0.5, 1),
+    check(out,
+          cells_in_box(triangulation, 0, 0.5, 1, 0.5, 1),
           "cells with material id 0 lie in the top-right quarter");
 
     auto counts = count_boundary_faces(triangulation);
-    check_equal("boundary faces with id 11 (left)", counts[11], 2u);
-    check_equal("boundary faces with id 12 (bottom)", counts[12], 2u);
-    check_equal("boundary faces with id 13", counts[13], 2u);
-    check_equal("boundary faces with id 0 (top, in no group)", counts[0], 2u);
-    check_equal("distinct boundary ids", counts.size(), std::size_t(4));
-    check(boundary_faces_on(triangulation, 11, 0, 0.0), "faces with id 11 lie on x = 0");
-    check(boundary_faces_on(triangulation, 12, 1, 0.0), "faces with id 12 lie on y = 0");
-    check(boundary_faces_on(triangulation, 0, 1, 1.0), "faces with id 0 lie on y = 1");
-    check_near("length of 'left'", boundary_length(triangulation, 11), 1.0, 1e-14);
+    check_equal(out, "boundary faces with id 11 (left)", counts[11], 2u);
+    check_equal(out, "boundary faces with id 12 (bottom)", counts[12], 2u);
+    check_equal(out, "boundary faces with id 13", counts[13], 2u);
+    check_equal(out, "boundary faces with id 0 (top, in no group)", counts[0], 2u);
+    check_equal(out, "distinct boundary ids", counts.size(), std::size_t(4));
+    check(out,
+          boundary_faces_on(triangulation, 11, 0, 0.0),
+          "faces with id 11 lie on x = 0");
+    check(out,
+          boundary_faces_on(triangulation, 12, 1, 0.0),
+          "faces with id 12 lie on y = 0");
+    check(out,
+          boundary_faces_on(triangulation, 0, 1, 1.0),
+          "faces with id 0 lie on y = 1");
+    check_near(out, "length of 'left'", boundary_length(triangulation, 11), 1.0, 1e-14);
 
-    check_equal("point groups", groups.point_groups.size(), std::size_t(1));
-    check(groups.point_groups.count("corner") == 1 &&
+    check_equal(out, "point groups", groups.point_groups.size(), std::size_t(1));
+    check(out,
+          groups.point_groups.count("corner") == 1 &&
             groups.point_groups.at("corner").size() == 1 &&
             groups.point_groups.at("corner")[0] == Point<3>(1, 1, 0),
           "point group 'corner' = {(1, 1, 0)}");
 
     triangulation.refine_global(1);
     counts = count_boundary_faces(triangulation);
-    std::cout << "after refine_global(1):" << std::endl;
-    check_equal("cells", triangulation.n_active_cells(), 32u);
-    check_near("total area", total_area(triangulation), 1.0, 1e-12);
-    check_equal("boundary faces with id 11 (left)", counts[11], 4u);
-    check_equal("boundary faces with id 12 (bottom)", counts[12], 4u);
-    check_equal("boundary faces with id 0", counts[0], 4u);
-    check(boundary_faces_on(triangulation, 11, 0, 0.0), "faces with id 11 lie on x = 0");
-    check_near("length of 'left'", boundary_length(triangulation, 11), 1.0, 1e-14);
+    out << "after refine_global(1):" << std::endl;
+    check_equal(out, "cells", triangulation.n_active_cells(), 32u);
+    check_near(out, "total area", total_area(triangulation), 1.0, 1e-12);
+    check_equal(out, "boundary faces with id 11 (left)", counts[11], 4u);
+    check_equal(out, "boundary faces with id 12 (bottom)", counts[12], 4u);
+    check_equal(out, "boundary faces with id 0", counts[0], 4u);
+    check(out,
+          boundary_faces_on(triangulation, 11, 0, 0.0),
+          "faces with id 11 lie on x = 0");
+    check_near(out, "length of 'left'", boundary_length(triangulation, 11), 1.0, 1e-14);
     materials = count_material_ids(triangulation);
-    check_equal("cells with material id 31 (cloth)", materials[31], 8u);
-    check_equal("cells with material id 32 (half)", materials[32], 16u);
-    check_equal("cells with material id 0 (in no group)", materials[0], 8u);
-    check_equal("distinct material ids", materials.size(), std::size_t(3));
-    check(cells_in_box(triangulation, 32, 0, 1, 0, 0.5),
+    check_equal(out, "cells with material id 31 (cloth)", materials[31], 8u);
+    check_equal(out, "cells with material id 32 (half)", materials[32], 16u);
+    check_equal(out, "cells with material id 0 (in no group)", materials[0], 8u);
+    check_equal(out, "distinct material ids", materials.size(), std::size_t(3));
+    check(out,
+          cells_in_box(triangulation, 32, 0, 1, 0, 0.5),
           "cells with material id 32 lie in the bottom half");
-    check(cells_in_box(triangulation, 31, 0, 0.5, 0.5, 1),
+    check(out,
+          cells_in_box(triangulation, 31, 0, 0.5, 0.5, 1),
           "cells with material id 31 lie in the top-left quarter");
   }
 
 
   void
-  test_bad_meshes(const std::string &data)
+  test_bad_meshes(ConditionalOStream &out, const std::string &data)
   {
-    std::cout << "bad meshes:" << std::endl;
-    check_rejected(data + "/quad.msh", {"Quadrilateral", "element 7"});
-    check_rejected(data + "/degenerate.msh", {"degenerate", "triangle 5"});
-    check_rejected(data + "/flipped.msh",
+    out << "bad meshes:" << std::endl;
+    check_rejected(out, data + "/quad.msh", {"Quadrilateral", "element 7"});
+    check_rejected(out, data + "/degenerate.msh", {"degenerate", "triangle 5"});
+    check_rejected(out,
+                   data + "/flipped.msh",
                    {"not consistently oriented", "triangles 1 and 2"});
-    check_rejected(data + "/interior_line.msh", {"seam", "interior", "boundary"});
-    check_rejected(data + "/nonmanifold.msh", {"non-manifold", "1, 2, 3"});
-    check_rejected(data + "/overlapping_surfaces.msh",
+    check_rejected(out, data + "/interior_line.msh", {"seam", "interior", "boundary"});
+    check_rejected(out, data + "/nonmanifold.msh", {"non-manifold", "1, 2, 3"});
+    check_rejected(out,
+                   data + "/overlapping_surfaces.msh",
                    {"back", "triangle 1", "also in surface group 'front'"});
-    check_rejected(data + "/no_such_mesh.msh", {"not found"});
+    check_rejected(out, data + "/no_such_mesh.msh", {"not found"});
   }
 
 
   void
-  test_generation_from_geo()
+  test_generation_from_geo(ConditionalOStream &out)
   {
     namespace fs = std::filesystem;
-    std::cout << "generation from a .geo:" << std::endl;
+    out << "generation from a .geo:" << std::endl;
     const fs::path directory =
       fs::temp_directory_path() / ("clothsim_mesh_reader_" + std::to_string(::getpid()));
     fs::remove_all(directory);
@@ -316,48 +305,57 @@ namespace
       std::ofstream geo(directory / "broken.geo");
       geo << "Point(1) = {0, 0, 0, 0.25}\nLine(1) = {1, 2};\n";
     }
-    check_rejected((directory / "broken.msh").string(), {"broken.geo", "syntax error"});
+    check_rejected(out,
+                   (directory / "broken.msh").string(),
+                   {"broken.geo", "syntax error"});
 
     const std::string msh_file = (directory / "square.msh").string();
-    check(!fs::exists(msh_file), "square.msh does not exist before");
+    check(out, !fs::exists(msh_file), "square.msh does not exist before");
 
     try
       {
         Triangulation<2, 3>    triangulation;
         const mesh::MeshGroups groups = mesh::read_gmsh(msh_file, triangulation);
-        check(fs::exists(msh_file), "square.msh exists after");
+        check(out, fs::exists(msh_file), "square.msh exists after");
         const auto written = fs::last_write_time(msh_file);
-        std::cout << "  (" << triangulation.n_active_cells() << " cells, "
-                  << triangulation.n_vertices() << " vertices)" << std::endl;
-        check(triangulation.n_active_cells() > 8, "more than 8 cells");
-        check_near("total area", total_area(triangulation), 1.0, 1e-12);
-        check(groups.line_groups.count("left") == 1 && groups.line_groups.at("left") == 7,
+        out << "  (" << triangulation.n_active_cells() << " cells, "
+            << triangulation.n_vertices() << " vertices)" << std::endl;
+        check(out, triangulation.n_active_cells() > 8, "more than 8 cells");
+        check_near(out, "total area", total_area(triangulation), 1.0, 1e-12);
+        check(out,
+              groups.line_groups.count("left") == 1 && groups.line_groups.at("left") == 7,
               "line group 'left' has boundary id 7");
-        check_near("length of 'left'", boundary_length(triangulation, 7), 1.0, 1e-12);
-        check(boundary_faces_on(triangulation, 7, 0, 0.0),
+        check_near(
+          out, "length of 'left'", boundary_length(triangulation, 7), 1.0, 1e-12);
+        check(out,
+              boundary_faces_on(triangulation, 7, 0, 0.0),
               "faces with id 7 lie on x = 0");
-        check(groups.point_groups.count("origin") == 1 &&
+        check(out,
+              groups.point_groups.count("origin") == 1 &&
                 groups.point_groups.at("origin").size() == 1 &&
                 groups.point_groups.at("origin")[0] == Point<3>(0, 0, 0),
               "point group 'origin' = {(0, 0, 0)}");
-        check(groups.surface_groups.count("cloth") == 1 &&
+        check(out,
+              groups.surface_groups.count("cloth") == 1 &&
                 groups.surface_groups.at("cloth") == 9,
               "surface group 'cloth' has material id 9");
         const auto materials = count_material_ids(triangulation);
-        check(materials.size() == 1 && materials.begin()->first == 9,
+        check(out,
+              materials.size() == 1 && materials.begin()->first == 9,
               "all cells have material id 9");
 
         // A second read takes the existing .msh as it is.
         Triangulation<2, 3> again;
         mesh::read_gmsh(msh_file, again);
-        check_equal("cells when read again",
+        check_equal(out,
+                    "cells when read again",
                     again.n_active_cells(),
                     triangulation.n_active_cells());
-        check(fs::last_write_time(msh_file) == written, "square.msh not rewritten");
+        check(out, fs::last_write_time(msh_file) == written, "square.msh not rewritten");
       }
     catch (const std::exception &error)
       {
-        check(false, std::string("generation threw: ") + error.what());
+        check(out, false, std::string("generation threw: ") + error.what());
       }
     fs::remove_all(directory);
   }
@@ -367,7 +365,7 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  Environment env(argc, argv);
   if (argc != 2)
     {
       std::cerr << "usage: " << argv[0] << " <directory with the test meshes>"
@@ -378,16 +376,13 @@ main(int argc, char **argv)
 
   try
     {
-      test_square(data);
-      test_bad_meshes(data);
-      test_generation_from_geo();
+      test_square(env.pcout, data);
+      test_bad_meshes(env.pcout, data);
+      test_generation_from_geo(env.pcout);
     }
   catch (const std::exception &error)
     {
-      check(false, std::string("unexpected exception: ") + error.what());
+      check(env.pcout, false, std::string("unexpected exception: ") + error.what());
     }
-
-  std::cout << n_checks - n_failures << " of " << n_checks << " checks passed"
-            << std::endl;
-  return n_failures == 0 ? 0 : 1;
+  return finish_tally(env.pcout);
 }

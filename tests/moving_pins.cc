@@ -4,28 +4,22 @@
 // in +x on the way (the pins reach 5 cm at t = 0.25 s) and more than 5 cm up by t = 0.5 s
 // (pins: 10 cm).
 
-#include <deal.II/base/mpi.h>
-
-#include "app/application.h"
-#include "csv.h"
+#include "test_support.h"
 
 #include <cmath>
-#include <filesystem>
-#include <iostream>
+
+using namespace clothsim::test;
 
 int
 main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const std::string                        output =
-    std::filesystem::temp_directory_path() / "clothsim-moving-pins";
-  const std::string scene =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/tests/scenes/moving_pins.prm";
-  const char *arguments[] = {"clothsim", scene.c_str(), "--output-dir", output.c_str()};
-  if (clothsim::run_application(4, arguments) != 0)
+  Environment       env(argc, argv);
+  const std::string output = scratch_directory("clothsim-moving-pins");
+  if (run_clothsim(
+        {source_path("tests/scenes/moving_pins.prm"), "--output-dir", output}) != 0)
     return 1;
 
-  const auto probes        = clothsim::test::read_csv(output + "/probes.csv");
+  const auto probes        = read_csv(output + "/probes.csv");
   double     worst_pin     = 0.;
   double     bottom_ux_max = 0., bottom_uz = 0.;
   for (unsigned int r = 0; r < probes.rows.size(); ++r)
@@ -43,10 +37,9 @@ main(int argc, char **argv)
           bottom_uz     = probes.number(r, "uz");
         }
     }
-  std::cout << "largest distance of the pin from its path " << worst_pin
+  env.pcout << "largest distance of the pin from its path " << worst_pin
             << " m; bottom corner: largest ux " << bottom_ux_max << " m, uz at t = 0.5 s "
             << bottom_uz << " m" << std::endl;
   const bool passed = worst_pin < 1e-12 && bottom_ux_max > 0.01 && bottom_uz > 0.05;
-  std::cout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(env.pcout, passed);
 }

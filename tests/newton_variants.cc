@@ -21,35 +21,24 @@
 //    Newton solve, so the run finishes with step halvings and every triangle below 100
 //    times its area.
 
-#include "scene_run.h"
+#include "test_support.h"
 
 using namespace clothsim;
 using namespace clothsim::test;
 
 namespace
 {
-  const std::string scene = std::string(CLOTHSIM_SOURCE_DIR) + "/params/default.prm";
-  const std::string directory =
-    std::filesystem::temp_directory_path() / "clothsim-newton-variants";
+  const std::string scene               = source_path("params/default.prm");
+  const std::string directory           = scratch_directory("clothsim-newton-variants");
   const std::vector<std::string> probes = {"top_middle", "center", "bottom_corner"};
 
   SceneRun
   run(const std::vector<std::string> &settings)
   {
-    std::vector<std::string> overrides = {"Time/End time=0.5"};
-    overrides.insert(overrides.end(), settings.begin(), settings.end());
-    return run_scene(scene, overrides, directory, MPI_COMM_WORLD);
-  }
-
-  double
-  largest_probe_difference(const SceneRun &a, const SceneRun &b)
-  {
-    double difference = 0.;
-    for (const std::string &probe : probes)
-      difference =
-        std::max(difference,
-                 (a.probe_displacement(probe) - b.probe_displacement(probe)).norm());
-    return difference;
+    return run_scene(scene,
+                     join({"Time/End time=0.5"}, settings),
+                     directory,
+                     MPI_COMM_WORLD);
   }
 
   void
@@ -66,11 +55,10 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
-  const double                     tolerance = 1e-6; // m, 'Displacement tolerance'
-  bool                             passed    = true;
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout     = env.pcout;
+  const double        tolerance = 1e-6; // m, 'Displacement tolerance'
+  bool                passed    = true;
 
   const SceneRun newton = run({"Nonlinear solver/Method=newton"});
   report(pcout, "newton", newton);
@@ -80,7 +68,7 @@ main(int argc, char **argv)
   report(pcout, "inexact newton", inexact);
   passed &= check_below(pcout,
                         "largest probe difference from Newton, m",
-                        largest_probe_difference(inexact, newton),
+                        largest_probe_difference(inexact, newton, probes),
                         tolerance);
   passed &= check_below(pcout,
                         "linear iterations / Newton's",
@@ -104,7 +92,7 @@ main(int argc, char **argv)
       report(pcout, "modified newton, " + name, modified);
       passed &= check_below(pcout,
                             name + ": largest probe difference from Newton, m",
-                            largest_probe_difference(modified, reference),
+                            largest_probe_difference(modified, reference, probes),
                             tolerance);
       passed &= check_below(pcout,
                             name + ": tangents / Newton iterations",
@@ -124,7 +112,7 @@ main(int argc, char **argv)
                         0.5);
   passed &= check_below(pcout,
                         "largest probe difference from Newton, m",
-                        largest_probe_difference(every_iteration, newton),
+                        largest_probe_difference(every_iteration, newton, probes),
                         1e-12);
 
   pcout << "4. tangents never exceed Newton iterations" << std::endl;
@@ -141,7 +129,7 @@ main(int argc, char **argv)
                                        "Time/Error tolerance=1e-5",
                                        "Time/End time=0.05"},
                                       directory,
-                                      MPI_COMM_WORLD);
+                                      env.communicator);
   report(pcout, "adaptive midpoint", adaptive);
   passed &= check_above(pcout, "rejected steps", adaptive.summary.rejected, 0.5);
   passed &= check_below(pcout, "step halvings", adaptive.summary.retries, 0.5);
@@ -153,13 +141,12 @@ main(int argc, char **argv)
                         30.);
 
   pcout << "6. a single step that blows triangles up is cut" << std::endl;
-  const SceneRun stiff_drape =
-    run_scene(std::string(CLOTHSIM_SOURCE_DIR) + "/params/drape.prm",
-              {"Material/Young's modulus=8.21e7",
-               "Nonlinear solver/Method=single step",
-               "Time/End time=0.15"},
-              directory,
-              MPI_COMM_WORLD);
+  const SceneRun stiff_drape = run_scene(source_path("params/drape.prm"),
+                                         {"Material/Young's modulus=8.21e7",
+                                          "Nonlinear solver/Method=single step",
+                                          "Time/End time=0.15"},
+                                         directory,
+                                         env.communicator);
   report(pcout, "drape, 100 x E, single step", stiff_drape);
   passed &= check_above(pcout, "step halvings", stiff_drape.summary.retries, 0.5);
   passed &=
@@ -168,6 +155,5 @@ main(int argc, char **argv)
                 stiff_drape.model().area_ratio_range(stiff_drape.displacement).second,
                 100.);
 
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

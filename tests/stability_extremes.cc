@@ -47,8 +47,7 @@
 // A run's outcome, steps, largest probe displacement and energy growth are printed in a
 // table at the end.
 
-#include "csv.h"
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <algorithm>
 #include <chrono>
@@ -62,13 +61,11 @@ namespace
 {
   namespace fs = std::filesystem;
 
-  const std::string default_prm =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/params/default.prm";
-  const std::string sliver_geo =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/meshes/sliver-sheet.geo";
-  const fs::path root    = fs::temp_directory_path() / "clothsim-stability";
-  const double   young   = 0.821e6; // Pa, the default
-  const double   gravity = 9.81;    // m/s²
+  const std::string default_prm = source_path("params/default.prm");
+  const std::string sliver_geo  = source_path("meshes/sliver-sheet.geo");
+  const fs::path    root        = scratch_directory("clothsim-stability");
+  const double      young       = 0.821e6; // Pa, the default
+  const double      gravity     = 9.81;    // m/s²
 
   enum class EnergyCheck
   {
@@ -112,13 +109,6 @@ namespace
 
   const std::vector<std::string> no_damping = {"Damping/Mass proportional=0",
                                                "Damping/Stiffness proportional=0"};
-
-  std::vector<std::string>
-  join(std::vector<std::string> a, const std::vector<std::string> &b)
-  {
-    a.insert(a.end(), b.begin(), b.end());
-    return a;
-  }
 
   // Checks that every field of `file` (but the columns named in `text_columns`) is a
   // finite number and every row has the header's number of fields. Returns the number of
@@ -205,9 +195,8 @@ namespace
     pcout << c.name << " (" << c.settings << ")" << std::endl;
     const fs::path directory = root / c.name;
     fs::remove_all(directory);
-    std::vector<std::string> overrides = {"Time/End time=" + number(c.end_time),
-                                          "Output/Progress=off"};
-    overrides.insert(overrides.end(), c.overrides.begin(), c.overrides.end());
+    const std::vector<std::string> overrides =
+      join({"Time/End time=" + number(c.end_time), "Output/Progress=off"}, c.overrides);
 
     Outcome    outcome;
     const auto start = std::chrono::steady_clock::now();
@@ -240,19 +229,15 @@ namespace
 
     bool &passed = outcome.passed;
     // a. finished or stopped cleanly; the explicit cases beyond the limit stopped.
-    const bool clean = outcome.finished || (outcome.stopped && !outcome.message.empty());
-    pcout << (clean ? "  ok    " : "  FAIL  ") << "outcome: "
-          << (outcome.finished  ? "finished"
-              : outcome.stopped ? "stopped with a SimulationError"
-                                : "crashed out of the run")
-          << std::endl;
-    passed &= clean;
+    passed &= check(pcout,
+                    outcome.finished || (outcome.stopped && !outcome.message.empty()),
+                    std::string("outcome: ") + (outcome.finished ? "finished"
+                                                : outcome.stopped
+                                                  ? "stopped with a SimulationError"
+                                                  : "crashed out of the run"));
     if (c.must_stop)
-      {
-        pcout << (outcome.stopped ? "  ok    " : "  FAIL  ")
-              << "the divergence is detected (SimulationError)" << std::endl;
-        passed &= outcome.stopped;
-      }
+      passed &=
+        check(pcout, outcome.stopped, "the divergence is detected (SimulationError)");
 
     // b. nothing non-finite written.
     const unsigned int bad =
@@ -337,11 +322,9 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
-  bool                             passed = true;
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout  = env.pcout;
+  bool                passed = true;
 
   // 6. The sliver mesh, generated from a copy of the .geo in the scratch directory (a
   //    fresh .msh every run, none in the source tree).
@@ -364,7 +347,7 @@ main(int argc, char **argv)
                                                    "Time/Integrator=velocity verlet"};
   double                         critical_step  = 0.;
   {
-    const auto loaded = load_scene(default_prm, verlet_springs, communicator);
+    const auto loaded = load_scene(default_prm, verlet_springs, env.communicator);
     VectorType u;
     loaded->model->initialize_ghosted(u);
     critical_step =
@@ -490,6 +473,5 @@ main(int argc, char **argv)
            "run's energy scale max (K + W + |P|))"
         << std::endl;
 
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

@@ -19,20 +19,17 @@
 //    estimates) is below the target too and at least half the actual error, and a target
 //    four times smaller gives a smaller error.
 
-#include "csv.h"
-#include "scene_run.h"
+#include "test_support.h"
 
 using namespace clothsim;
 using namespace clothsim::test;
 
 namespace
 {
-  const std::string benchmark =
-    std::string(CLOTHSIM_SOURCE_DIR) + "/params/benchmarks/membrane-vibration.prm";
-  const std::string directory =
-    std::filesystem::temp_directory_path() / "clothsim-time-integrators";
-  const double frequency = 2.6792856; // Hz
-  const double period    = 1. / frequency;
+  const std::string benchmark = source_path("params/benchmarks/membrane-vibration.prm");
+  const std::string directory = scratch_directory("clothsim-time-integrators");
+  const double      frequency = 2.6792856; // Hz
+  const double      period    = 1. / frequency;
 
   // The centre's deflection history (time, uz) from probes.csv.
   std::vector<std::pair<double, double>>
@@ -168,18 +165,14 @@ namespace
   check_energy(ConditionalOStream &pcout)
   {
     run("implicit midpoint", period / 16., 100. * period);
-    const Csv    csv     = read_csv(directory + "/statistics.csv");
-    const double initial = csv.number(0, "total_energy");
-    double       drift = 0., kinetic = 0.;
-    for (unsigned int r = 0; r < csv.rows.size(); ++r)
-      {
-        drift   = std::max(drift, std::abs(csv.number(r, "total_energy") - initial));
-        kinetic = std::max(kinetic, csv.number(r, "kinetic_energy"));
-      }
-    pcout << "  midpoint at T/16 over 100 periods (" << csv.rows.size() - 1
-          << " steps): largest energy drift " << drift << " J, vibration energy "
-          << kinetic << " J" << std::endl;
-    return check_below(pcout, "energy drift / vibration energy", drift / kinetic, 0.005);
+    const EnergyDrift energy = energy_drift(directory + "/statistics.csv");
+    pcout << "  midpoint at T/16 over 100 periods (" << energy.steps
+          << " steps): largest energy drift " << energy.drift << " J, vibration energy "
+          << energy.largest_kinetic << " J" << std::endl;
+    return check_below(pcout,
+                       "energy drift / vibration energy",
+                       energy.drift / energy.largest_kinetic,
+                       0.005);
   }
   // 5. The single linearised step (Baraff & Witkin) on the default hanging sheet, 0.5 s
   // of
@@ -188,7 +181,7 @@ namespace
   bool
   check_single_step(ConditionalOStream &pcout)
   {
-    const std::string   scene = std::string(CLOTHSIM_SOURCE_DIR) + "/params/default.prm";
+    const std::string   scene = source_path("params/default.prm");
     std::vector<double> differences;
     for (const double dt : {1. / 240., 1. / 30.})
       {
@@ -201,12 +194,10 @@ namespace
                                "Time/End time=0.5"},
                               directory,
                               MPI_COMM_WORLD);
-        double difference = 0.;
-        for (const std::string probe : {"top_middle", "center", "bottom_corner"})
-          difference = std::max(difference,
-                                (runs[0].probe_displacement(probe) -
-                                 runs[1].probe_displacement(probe))
-                                  .norm());
+        const double difference =
+          largest_probe_difference(runs[0],
+                                   runs[1],
+                                   {"top_middle", "center", "bottom_corner"});
         pcout << "  dt = " << dt << " s: single step against Newton, largest probe "
               << "difference " << difference << " m (Newton iterations per step: "
               << double(runs[0].summary.newton_iterations) / runs[0].summary.steps
@@ -285,20 +276,20 @@ namespace
   bool
   check_accuracy_target(ConditionalOStream &pcout)
   {
-    const double        end       = 0.4;
-    const double        reference = run("implicit midpoint", 0.0003125, end).back().second;
-    bool                passed    = true;
+    const double end       = 0.4;
+    const double reference = run("implicit midpoint", 0.0003125, end).back().second;
+    bool         passed    = true;
     std::vector<double> errors;
     for (const double target : {4e-5, 1e-5})
       {
-        const SceneRun result = run_scene(benchmark,
+        const SceneRun result   = run_scene(benchmark,
                                           {"Time/Integrator=implicit midpoint",
-                                           "Time/Accuracy target=" + number(target),
-                                           "Time/Time step=0.01",
-                                           "Time/End time=" + number(end)},
+                                             "Time/Accuracy target=" + number(target),
+                                             "Time/Time step=0.01",
+                                             "Time/End time=" + number(end)},
                                           directory,
                                           MPI_COMM_WORLD);
-        const double   error = std::abs(centre_history().back().second - reference);
+        const double   error    = std::abs(centre_history().back().second - reference);
         const double   estimate = result.summary.estimated_error;
         pcout << "  target " << target << " m: " << result.summary.steps << " steps, "
               << result.summary.rejected << " rejected, estimated error " << estimate
@@ -317,9 +308,8 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout = env.pcout;
   pcout << "1.-2. frequency and numerical damping over five periods" << std::endl;
   bool passed = check_frequency_and_damping(pcout);
   pcout << "3. temporal convergence" << std::endl;
@@ -332,6 +322,5 @@ main(int argc, char **argv)
   passed &= check_adaptive(pcout);
   pcout << "7. accuracy target" << std::endl;
   passed &= check_accuracy_target(pcout);
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

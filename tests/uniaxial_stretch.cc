@@ -8,40 +8,26 @@
 //   E_yy).
 // Asserts the force and the contraction within 1e-8 relative, and a uniform strain field.
 
-#include <deal.II/base/conditional_ostream.h>
-#include <deal.II/base/mpi.h>
-#include <deal.II/base/timer.h>
-
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <cmath>
-#include <filesystem>
-#include <iostream>
-#include <set>
 
 using namespace clothsim;
+using namespace clothsim::test;
 
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout = env.pcout;
 
-  const std::string directory =
-    std::filesystem::temp_directory_path() / "clothsim-uniaxial";
-  std::filesystem::create_directories(directory);
-  auto scene =
-    load_scene(std::string(CLOTHSIM_SOURCE_DIR) + "/tests/scenes/uniaxial_stretch.prm",
-               {},
-               communicator);
-  ClothModel  &model = *scene->model;
-  TimerOutput  timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
-  OutputWriter output = test::make_output_writer(directory, model, scene->probes);
-  TimeStepper  stepper(scene->parameters(), model, output, pcout, timer);
-  const RunSummary  summary = stepper.run();
-  const VectorType &u       = stepper.displacement();
+  const SceneRun    run     = run_scene(source_path("tests/scenes/uniaxial_stretch.prm"),
+                                 {},
+                                 scratch_directory("clothsim-uniaxial"),
+                                 env.communicator);
+  const ClothModel &model   = run.model();
+  const RunSummary &summary = run.summary;
+  const VectorType &u       = run.displacement;
 
   const double length = 2., width = 0.5, k = 100., nu = 0.3, stretch = 1.1;
   const double E_xx = 0.5 * (stretch * stretch - 1.), E_yy = -nu * E_xx;
@@ -49,11 +35,11 @@ main(int argc, char **argv)
   const double expected_contraction = width * (std::sqrt(1. + 2. * E_yy) - 1.);
 
   // Reaction: the internal forces' x components summed over the right edge.
-  const double force = test::edge_reaction_x(model, u, length);
+  const double force = edge_reaction_x(model, u, length);
 
   // Contraction of the far corner (2, 0.5): uy.
-  const auto   far_corner  = scene->probes.at(0);
-  const double contraction = test::gather_values(model, u, {far_corner.dofs[1]})[0];
+  const auto   far_corner  = run.scene->probes.at(0);
+  const double contraction = gather_values(model, u, {far_corner.dofs[1]})[0];
 
   // Uniform strain: every triangle's Green strain norm equals sqrt(E_xx² + E_yy²).
   const std::vector<double> strain          = model.cell_field(u, "green_strain");
@@ -62,7 +48,7 @@ main(int argc, char **argv)
   for (const double value : strain)
     worst_strain =
       std::max(worst_strain, std::abs(value - expected_strain) / expected_strain);
-  worst_strain = Utilities::MPI::max(worst_strain, communicator);
+  worst_strain = Utilities::MPI::max(worst_strain, env.communicator);
 
   const double force_error = std::abs(force - expected_force) / expected_force;
   const double contraction_error =
@@ -77,6 +63,5 @@ main(int argc, char **argv)
 
   const bool passed =
     force_error < 1e-8 && contraction_error < 1e-8 && worst_strain < 1e-8;
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return finish(pcout, passed);
 }

@@ -8,10 +8,10 @@
 // a directory that does not exist and a field of the wrong size (on the last rank only)
 // make every rank throw. With an argument, the files are kept in that directory.
 
-#include "io/vtu_writer.h"
-
-#include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
+
+#include "io/vtu_writer.h"
+#include "test_support.h"
 
 #include <vtkCellData.h>
 #include <vtkCellType.h>
@@ -37,36 +37,10 @@
 #include <vector>
 
 using namespace clothsim::io;
+using namespace clothsim::test;
 
 namespace
 {
-  unsigned int n_checks   = 0;
-  unsigned int n_failures = 0;
-  unsigned int this_rank  = 0;
-
-  // Rank 0 prints every check, other ranks only their failures.
-  void
-  check(const bool ok, const std::string &what)
-  {
-    ++n_checks;
-    if (!ok)
-      ++n_failures;
-    if (this_rank == 0 || !ok)
-      std::cout << (ok ? "  ok    " : "  FAIL  ")
-                << (this_rank == 0 ? "" : "[rank " + std::to_string(this_rank) + "] ")
-                << what << std::endl;
-  }
-
-  template <typename T>
-  void
-  check_equal(const std::string &what, const T &value, const T &expected)
-  {
-    std::ostringstream text;
-    text << std::setprecision(17) << what << " = " << value << " (expected " << expected
-         << ")";
-    check(value == expected, text.str());
-  }
-
   // Relative difference of a read value from the written one.
   double
   relative_difference(const double value, const double expected)
@@ -122,25 +96,33 @@ namespace
 
   // Compares one field of the written pieces (concatenated) with the array read back.
   void
-  check_array(vtkFieldData      *read,
-              vtkFieldData      *other,
-              const std::string &kind,
-              const Field       &field,
-              const std::string &what)
+  check_array(ConditionalOStream &out,
+              vtkFieldData       *read,
+              vtkFieldData       *other,
+              const std::string  &kind,
+              const Field        &field,
+              const std::string  &what)
   {
     vtkDataArray *array = read->GetArray(field.name.c_str());
-    check(array != nullptr, what + ": " + kind + " array '" + field.name + "' present");
-    check(other->GetArray(field.name.c_str()) == nullptr,
+    check(out,
+          array != nullptr,
+          what + ": " + kind + " array '" + field.name + "' present");
+    check(out,
+          other->GetArray(field.name.c_str()) == nullptr,
           what + ": '" + field.name + "' is " + kind + " data only");
     if (array == nullptr)
       return;
-    check_equal(what + ": '" + field.name + "' components",
+    check_equal(out,
+                what + ": '" + field.name + "' components",
                 array->GetNumberOfComponents(),
                 static_cast<int>(field.n_components));
-    check_equal(what + ": '" + field.name + "' tuples",
+    check_equal(out,
+                what + ": '" + field.name + "' tuples",
                 static_cast<std::size_t>(array->GetNumberOfTuples()),
                 field.values.size() / field.n_components);
-    check(array->GetDataType() == VTK_DOUBLE, what + ": '" + field.name + "' is Float64");
+    check(out,
+          array->GetDataType() == VTK_DOUBLE,
+          what + ": '" + field.name + "' is Float64");
     if (array->GetNumberOfValues() != static_cast<vtkIdType>(field.values.size()))
       return;
     double largest = 0.;
@@ -149,15 +131,17 @@ namespace
                          relative_difference(array->GetComponent(k / field.n_components,
                                                                  k % field.n_components),
                                              field.values[k]));
-    std::ostringstream text;
-    text << what << ": '" << field.name << "' " << field.values.size()
-         << " values, largest relative difference " << largest << " (expected <= 1e-15)";
-    check(largest <= 1e-15, text.str());
+    check_at_most(out,
+                  what + ": '" + field.name + "' " + std::to_string(field.values.size()) +
+                    " values, largest relative difference",
+                  largest,
+                  1e-15);
   }
 
   // Checks a grid read back against the pieces written, concatenated in rank order.
   void
-  check_grid(vtkUnstructuredGrid      *grid,
+  check_grid(ConditionalOStream       &out,
+             vtkUnstructuredGrid      *grid,
              const std::vector<Frame> &frames,
              const std::string        &what)
   {
@@ -187,8 +171,8 @@ namespace
       }
     const auto n_points = static_cast<vtkIdType>(all.piece.points.size());
     const auto n_cells  = static_cast<vtkIdType>(all.piece.triangles.size());
-    check_equal(what + ": points", grid->GetNumberOfPoints(), n_points);
-    check_equal(what + ": cells", grid->GetNumberOfCells(), n_cells);
+    check_equal(out, what + ": points", grid->GetNumberOfPoints(), n_points);
+    check_equal(out, what + ": cells", grid->GetNumberOfCells(), n_cells);
     if (grid->GetNumberOfPoints() != n_points || grid->GetNumberOfCells() != n_cells)
       return;
 
@@ -202,8 +186,9 @@ namespace
           n_wrong_vertices +=
             ids->GetNumberOfIds() != 3 || ids->GetId(v) != all.piece.triangles[c][v];
       }
-    check_equal(what + ": cells of type VTK_TRIANGLE", n_triangles, n_cells);
-    check_equal(what + ": cell vertices differing from those written",
+    check_equal(out, what + ": cells of type VTK_TRIANGLE", n_triangles, n_cells);
+    check_equal(out,
+                what + ": cell vertices differing from those written",
                 n_wrong_vertices,
                 vtkIdType(0));
 
@@ -213,16 +198,18 @@ namespace
         largest =
           std::max(largest,
                    relative_difference(grid->GetPoint(p)[d], all.piece.points[p][d]));
-    check(grid->GetPoints()->GetDataType() == VTK_DOUBLE, what + ": points are Float64");
-    std::ostringstream text;
-    text << what << ": point coordinates, largest relative difference " << largest
-         << " (expected <= 1e-15)";
-    check(largest <= 1e-15, text.str());
+    check(out,
+          grid->GetPoints()->GetDataType() == VTK_DOUBLE,
+          what + ": points are Float64");
+    check_at_most(out,
+                  what + ": point coordinates, largest relative difference",
+                  largest,
+                  1e-15);
 
     for (const Field &field : all.data.point_fields)
-      check_array(grid->GetPointData(), grid->GetCellData(), "point", field, what);
+      check_array(out, grid->GetPointData(), grid->GetCellData(), "point", field, what);
     for (const Field &field : all.data.cell_fields)
-      check_array(grid->GetCellData(), grid->GetPointData(), "cell", field, what);
+      check_array(out, grid->GetCellData(), grid->GetPointData(), "cell", field, what);
   }
 
   // TIME as read back, NaN if there is none.
@@ -244,10 +231,11 @@ namespace
 
   // Expects write_vtu_frame to throw on every rank, with `text` in the message.
   void
-  check_throws(const std::string &what,
-               const std::string &directory,
-               const Frame       &frame,
-               const std::string &text)
+  check_throws(ConditionalOStream &out,
+               const std::string  &what,
+               const std::string  &directory,
+               const Frame        &frame,
+               const std::string  &text)
   {
     std::string message;
     try
@@ -258,7 +246,8 @@ namespace
       {
         message = e.what();
       }
-    check(message.find(text) != std::string::npos,
+    check(out,
+          message.find(text) != std::string::npos,
           what + ": throws with '" + text + "' in the message: '" + message + "'");
   }
 } // namespace
@@ -267,10 +256,11 @@ namespace
 int
 main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const unsigned int n_ranks = dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-  this_rank                  = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-  const double time          = 1.2345678901234567;
+  Environment         env(argc, argv);
+  ConditionalOStream &out       = env.pcout;
+  const unsigned int  n_ranks   = Utilities::MPI::n_mpi_processes(env.communicator);
+  const unsigned int  this_rank = Utilities::MPI::this_mpi_process(env.communicator);
+  const double        time      = 1.2345678901234567;
 
   const bool  keep = argc > 1;
   std::string directory;
@@ -287,9 +277,9 @@ main(int argc, char **argv)
           directory = name;
         }
       std::filesystem::create_directories(directory);
-      std::cout << "writing into " << directory << " on " << n_ranks << " rank(s)\n";
+      out << "writing into " << directory << " on " << n_ranks << " rank(s)\n";
     }
-  directory = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, directory, 0);
+  directory = Utilities::MPI::broadcast(env.communicator, directory, 0);
 
   if (n_ranks == 1)
     {
@@ -310,12 +300,12 @@ main(int argc, char **argv)
                 field.values.clear();
             }
           const std::string record = write_vtu_frame(
-            directory, stem, written.piece, written.data, time, MPI_COMM_WORLD);
-          check_equal(stem + ": record", record, stem + ".vtu");
+            directory, stem, written.piece, written.data, time, env.communicator);
+          check_equal(out, stem + ": record", record, stem + ".vtu");
           vtkNew<vtkXMLUnstructuredGridReader> reader;
           vtkUnstructuredGrid *grid = read_vtu(reader, directory + "/" + record);
-          check_grid(grid, {written}, stem);
-          check_equal(stem + ": TIME", read_time(grid), time);
+          check_grid(out, grid, {written}, stem);
+          check_equal(out, stem + ": TIME", read_time(grid), time);
         }
     }
   else
@@ -324,10 +314,10 @@ main(int argc, char **argv)
       const auto frame_of = [](const unsigned int r) {
         return make_frame(2 + r, 2, 10. * r, r);
       };
-      const Frame       mine = frame_of(this_rank);
-      const std::string record =
-        write_vtu_frame(directory, "pieces", mine.piece, mine.data, time, MPI_COMM_WORLD);
-      check_equal("pieces: record", record, std::string("pieces.pvtu"));
+      const Frame       mine   = frame_of(this_rank);
+      const std::string record = write_vtu_frame(
+        directory, "pieces", mine.piece, mine.data, time, env.communicator);
+      check_equal(out, "pieces: record", record, std::string("pieces.pvtu"));
       if (this_rank == 0)
         {
           std::vector<Frame> frames;
@@ -338,53 +328,52 @@ main(int argc, char **argv)
               points_sum += frames.back().piece.points.size();
               cells_sum += frames.back().piece.triangles.size();
             }
-          std::cout << "  " << n_ranks << " pieces: " << points_sum << " points, "
-                    << cells_sum << " triangles in all\n";
+          out << "  " << n_ranks << " pieces: " << points_sum << " points, " << cells_sum
+              << " triangles in all\n";
           vtkNew<vtkXMLPUnstructuredGridReader> reader;
           reader->SetFileName((directory + "/" + record).c_str());
           reader->Update();
-          check_grid(reader->GetOutput(), frames, "pvtu");
-          check_equal("pvtu: TIME", read_time(reader->GetOutput()), time);
+          check_grid(out, reader->GetOutput(), frames, "pvtu");
+          check_equal(out, "pvtu: TIME", read_time(reader->GetOutput()), time);
 
           // Every piece on its own, with its TIME.
           for (unsigned int r = 0; r < n_ranks; ++r)
             {
               const std::string piece =
-                "pieces." + dealii::Utilities::int_to_string(r, 4) + ".vtu";
+                "pieces." + Utilities::int_to_string(r, 4) + ".vtu";
               vtkNew<vtkXMLUnstructuredGridReader> piece_reader;
               vtkUnstructuredGrid *grid = read_vtu(piece_reader, directory + "/" + piece);
-              check_grid(grid, {frames[r]}, piece);
-              check_equal(piece + ": TIME", read_time(grid), time);
+              check_grid(out, grid, {frames[r]}, piece);
+              check_equal(out, piece + ": TIME", read_time(grid), time);
             }
         }
     }
 
   // Errors: a missing directory, and a field of the wrong size on the last rank only.
   const Frame frame = make_frame(2, 2, 0., 0);
-  check_throws("missing directory",
+  check_throws(out,
+               "missing directory",
                directory + "/no-such-directory",
                frame,
                directory + "/no-such-directory/bad.");
   Frame wrong = frame;
   if (this_rank == n_ranks - 1)
     wrong.data.cell_fields[0].values.pop_back();
-  check_throws("wrong field size",
+  check_throws(out,
+               "wrong field size",
                directory,
                wrong,
                this_rank == n_ranks - 1 ? "'green_strain' has 7 values, expected 8"
                                         : "another rank");
 
-  const unsigned int total_checks = dealii::Utilities::MPI::sum(n_checks, MPI_COMM_WORLD);
+  const unsigned int total_checks =
+    Utilities::MPI::sum(tally().n_checks, env.communicator);
   const unsigned int total_failures =
-    dealii::Utilities::MPI::sum(n_failures, MPI_COMM_WORLD);
-  MPI_Barrier(MPI_COMM_WORLD);
-  if (this_rank == 0)
-    {
-      if (!keep)
-        std::filesystem::remove_all(directory);
-      std::cout << total_checks - total_failures << " of " << total_checks
-                << " checks passed on " << n_ranks << " rank(s)\n"
-                << (total_failures == 0 ? "PASSED" : "FAILED") << std::endl;
-    }
-  return total_failures == 0 ? 0 : 1;
+    Utilities::MPI::sum(tally().n_failures, env.communicator);
+  MPI_Barrier(env.communicator);
+  if (this_rank == 0 && !keep)
+    std::filesystem::remove_all(directory);
+  out << total_checks - total_failures << " of " << total_checks << " checks passed on "
+      << n_ranks << " rank(s)\n";
+  return finish(out, total_failures == 0);
 }
