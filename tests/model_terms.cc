@@ -39,7 +39,7 @@
 #include "physics/membrane_term.h"
 #include "physics/pressure_term.h"
 #include "scene/group_loads.h"
-#include "scene_run.h"
+#include "test_support.h"
 
 #include <algorithm>
 #include <set>
@@ -677,11 +677,10 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const MPI_Comm                   communicator = MPI_COMM_WORLD;
-  ConditionalOStream               pcout(std::cout,
-                           Utilities::MPI::this_mpi_process(communicator) == 0);
-  bool                             passed = check_fem_derivatives(pcout, communicator);
+  test::Environment   env(argc, argv);
+  ConditionalOStream &pcout        = env.pcout;
+  const MPI_Comm      communicator = env.communicator;
+  bool                passed       = check_fem_derivatives(pcout, communicator);
   passed &= check_spring_derivatives(pcout, communicator);
   passed &= check_term_selection(pcout, communicator);
   // The default sheet (membrane, gravity, α and β damping): measured drift 0.13 %,
@@ -720,6 +719,5 @@ main(int argc, char **argv)
       "damping_dissipated"},
      0.01,
      0.1});
-  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
-  return passed ? 0 : 1;
+  return test::finish(pcout, passed);
 }
