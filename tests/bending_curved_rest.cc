@@ -27,10 +27,10 @@
 //     the axis) relax the curvature across them in a layer a few triangles wide. Away
 //     from it the error is O(h²): for ν = 0 the energy density of the triangles at |θ| <
 //     20°, 0.2 < y < 0.8 (|T̄| D/2 tr(M²) per triangle, from
-//     ClothModel::cell_curvature_change) must converge to D/(2R²) with order at least 1.5
-//     and within 1e-4 at level 4 (measured: order 2.0, 1.0e-5). If refinement left the
-//     new vertices on the coarse facets, the rest curvature would concentrate on the
-//     coarse edges and this energy would grow like 1/h instead.
+//     the `curvature_change` output field) must converge to D/(2R²) with order at
+//     least 1.5 and within 1e-4 at level 4 (measured: order 2.0, 1.0e-5). If refinement
+//     left the new vertices on the coarse facets, the rest curvature would concentrate on
+//     the coarse edges and this energy would grow like 1/h instead.
 
 #include "test_support.h"
 

@@ -33,7 +33,7 @@
 // triangles wide, O(h) of the energy. Away from the boundary the discretisation converges
 // at O(h²): for the cylinders with ν = 0 the test also measures the energy density of the
 // triangles inside [0.2, 0.8]² (per triangle |T| D/2 tr(M²), from
-// ClothModel::cell_curvature_change, which returns sqrt(tr M²)) and asserts that its
+// the `curvature_change` output field, sqrt(tr M²)) and asserts that its
 // ratio to D κ²/2 converges with order at least 1.5 (measured: 2.0). The twist is a
 // quadratic, which the Morley element represents exactly: its ratio differs from 1 only
 // by the geometric nonlinearity, O(h²) (measured: 6e-8 at level 3).
