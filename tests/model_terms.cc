@@ -148,25 +148,6 @@ namespace
     return result;
   }
 
-  // The area-weighted centroid of the reference surface (the pressure cones' apex, as
-  // in scene/cloth_model.cc).
-  Point<3>
-  centroid(const mesh::Discretization &discretization)
-  {
-    Tensor<1, 3> moment;
-    double       area = 0.;
-    for (const auto &element : discretization.elements())
-      {
-        for (unsigned int v = 0; v < 3; ++v)
-          moment += (element.area / 3.) * element.reference[v];
-        area += element.area;
-      }
-    for (unsigned int d = 0; d < 3; ++d)
-      moment[d] = Utilities::MPI::sum(moment[d], discretization.get_communicator());
-    return Point<3>(moment /
-                    Utilities::MPI::sum(area, discretization.get_communicator()));
-  }
-
   // A model of the single term `name` of the FEM scene, on its mesh and constraints,
   // with the parameters scene/cloth_model.cc gives it. `membrane` keeps the stiffness of
   // the damping's β part alive.
@@ -208,7 +189,7 @@ namespace
       }
     else if (name == "pressure")
       result->add(std::make_unique<physics::PressureTerm>(parameters.loads.pressure,
-                                                          centroid(mesh)));
+                                                          mesh.reference_centroid()));
     else if (name == "bending")
       {
         AssertThrow(material.director_function == "angle", ExcNotImplemented());

@@ -307,6 +307,23 @@ namespace clothsim::mesh
   }
 
 
+  Point<3>
+  Discretization::reference_centroid() const
+  {
+    Tensor<1, 3> moment;
+    double       area = 0.;
+    for (const Element &element : element_table)
+      {
+        for (unsigned int v = 0; v < 3; ++v)
+          moment += (element.area / 3.) * element.reference[v];
+        area += element.area;
+      }
+    for (unsigned int d = 0; d < 3; ++d)
+      moment[d] = Utilities::MPI::sum(moment[d], communicator);
+    return Point<3>(moment / Utilities::MPI::sum(area, communicator));
+  }
+
+
   std::vector<ProbeLocation>
   Discretization::locate_probes(
     const std::vector<std::pair<std::string, Point<3>>> &points) const

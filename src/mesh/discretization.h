@@ -194,6 +194,10 @@ namespace clothsim
       double
       reference_area() const;
 
+      // The area-weighted centroid of the reference surface, m (summed over ranks).
+      Point<3>
+      reference_centroid() const;
+
       // Snaps each named point to the nearest vertex (the same on every rank).
       std::vector<ProbeLocation>
       locate_probes(const std::vector<std::pair<std::string, Point<3>>> &points) const;

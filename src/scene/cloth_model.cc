@@ -31,24 +31,6 @@ namespace clothsim
         parameters.material.bending && parameters.scene.model == Model::fem;
       return setup;
     }
-
-    // The pressure potential's apex: the area-weighted centroid of the reference surface.
-    Point<3>
-    surface_centroid(const mesh::Discretization &discretization)
-    {
-      Tensor<1, 3> moment;
-      double       area = 0.;
-      for (const auto &element : discretization.elements())
-        {
-          for (unsigned int v = 0; v < 3; ++v)
-            moment += (element.area / 3.) * element.reference[v];
-          area += element.area;
-        }
-      const MPI_Comm communicator = discretization.get_communicator();
-      for (unsigned int d = 0; d < 3; ++d)
-        moment[d] = Utilities::MPI::sum(moment[d], communicator);
-      return Point<3>(moment / Utilities::MPI::sum(area, communicator));
-    }
   } // namespace
 
 
@@ -118,10 +100,11 @@ namespace clothsim
     if (dynamic && (alpha > 0. || (fem && beta > 0.)))
       model->add(std::make_unique<physics::RayleighDamping>(
         discretization, alpha, beta, rho, material.lumped_mass, membrane));
+    // The pressure cones' apex: the reference surface's centroid.
     if (parameters.loads.pressure != 0.)
       model->add(
         std::make_unique<physics::PressureTerm>(parameters.loads.pressure,
-                                                surface_centroid(discretization)));
+                                                discretization.reference_centroid()));
     if (discretization.has_directors())
       {
         const physics::DirectorFunction function =
