@@ -349,7 +349,8 @@ main(int argc, char **argv)
         }
     }
 
-  // Errors: a missing directory, and a field of the wrong size on the last rank only.
+  // Errors: a missing directory, and a field of the wrong size on the last rank only,
+  // which every rank reports with that rank's path.
   const Frame frame = make_frame(2, 2, 0., 0);
   check_throws(out,
                "missing directory",
@@ -363,8 +364,10 @@ main(int argc, char **argv)
                "wrong field size",
                directory,
                wrong,
-               this_rank == n_ranks - 1 ? "'green_strain' has 7 values, expected 8"
-                                        : "another rank");
+               (n_ranks == 1
+                  ? std::string("bad.vtu")
+                  : "bad." + Utilities::int_to_string(n_ranks - 1, 4) + ".vtu") +
+                 ": field 'green_strain' has 7 values, expected 8");
 
   const unsigned int total_checks =
     Utilities::MPI::sum(tally().n_checks, env.communicator);

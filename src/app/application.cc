@@ -9,13 +9,17 @@
 #include "app/model_comparison.h"
 #include "app/scene_runner.h"
 #include "app/speed_accuracy_sweep.h"
+#include "io/collective.h"
 #include "io/input_error.h"
+#include "io/output_file.h"
 #include "io/output_writer.h"
 #include "io/parameters.h"
 #include "scene/scene.h"
 #include "time/explicit_stepper.h"
+#include "time/interruption.h"
 #include "time/time_stepper.h"
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -94,28 +98,45 @@ namespace clothsim
           run.completed    = outcome.completed;
         }
 
-      if (is_root)
-        {
-          const ComparisonFigures figures =
-            write_comparison(directory, runs[0], runs[1], [&]() {
-              std::vector<std::pair<std::string, Point<3>>> points;
-              for (const ProbeLocation &probe : scenes[0]->probes)
-                points.emplace_back(probe.name, probe.reference_point);
-              return points;
-            }());
-          std::cout << "comparison (" << directory << "): " << figures.frames
-                    << " output times; sheet size " << figures.sheet_size
-                    << " m; at the end |x_fem - x_ms| RMS " << figures.final_rms << " m ("
-                    << 100. * figures.final_rms / figures.sheet_size << " %), max "
-                    << figures.final_max << " m ("
-                    << 100. * figures.final_max / figures.sheet_size
-                    << " %); largest over time: RMS " << figures.largest_rms << " m, max "
-                    << figures.largest_max << " m\n"
-                    << "  runtime: fem (" << runs[0].integrator << ") "
-                    << runs[0].wall_seconds << " s, mass-spring (" << runs[1].integrator
-                    << ") " << runs[1].wall_seconds << " s" << std::endl;
-        }
+      io::run_collectively(communicator, [&]() {
+        if (is_root)
+          {
+            const ComparisonFigures figures =
+              write_comparison(directory, runs[0], runs[1], [&]() {
+                std::vector<std::pair<std::string, Point<3>>> points;
+                for (const ProbeLocation &probe : scenes[0]->probes)
+                  points.emplace_back(probe.name, probe.reference_point);
+                return points;
+              }());
+            std::cout << "comparison (" << directory << "): " << figures.frames
+                      << " output times; sheet size " << figures.sheet_size
+                      << " m; at the end |x_fem - x_ms| RMS " << figures.final_rms
+                      << " m (" << 100. * figures.final_rms / figures.sheet_size
+                      << " %), max " << figures.final_max << " m ("
+                      << 100. * figures.final_max / figures.sheet_size
+                      << " %); largest over time: RMS " << figures.largest_rms
+                      << " m, max " << figures.largest_max << " m\n"
+                      << "  runtime: fem (" << runs[0].integrator << ") "
+                      << runs[0].wall_seconds << " s, mass-spring (" << runs[1].integrator
+                      << ") " << runs[1].wall_seconds << " s" << std::endl;
+          }
+      });
       return runs[0].completed && runs[1].completed ? 0 : 2;
+    }
+
+    // An error that may have happened on this rank only: one line on stderr (from every
+    // rank that has it), then exit code 2; with several ranks MPI_Abort, so that no
+    // rank waits forever for this one.
+    int
+    stop_on_defect(const MPI_Comm communicator, std::string message)
+    {
+      for (char &c : message)
+        if (c == '\n')
+          c = ' ';
+      std::cerr << "clothsim: " << message << std::endl;
+      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
+        MPI_Abort(communicator, 2);
+      return 2;
     }
   } // namespace
 
@@ -127,6 +148,10 @@ namespace clothsim
     const bool         is_root      = Utilities::MPI::this_mpi_process(communicator) == 0;
     ConditionalOStream pcout(std::cout, is_root);
 
+    install_interruption_handlers(is_root);
+    // A file-size limit (ulimit -f) then fails the write with EFBIG, reported like a full
+    // disk, instead of killing the process with SIGXFSZ.
+    std::signal(SIGXFSZ, SIG_IGN);
     try
       {
         const CommandLine command_line = parse_command_line(argc, argv);
@@ -175,11 +200,41 @@ namespace clothsim
           *scene, file, output_directory(command_line, scene->input), pcout);
         return outcome.completed ? 0 : 2;
       }
+    // Exit codes (README): 1 bad input, 2 the run failed (simulation, output, memory),
+    // 128 + signal for an interrupted run. These errors reach every rank together
+    // (io/collective.h, the steppers' collective decisions); anything else is a defect
+    // that may have happened on one rank only, and MPI_Abort is then the only way not to
+    // leave the other ranks waiting.
     catch (const InputError &error)
       {
         if (is_root)
           std::cerr << "clothsim: error: " << error.what() << std::endl;
         return 1;
+      }
+    catch (const io::OutputError &error)
+      {
+        if (is_root)
+          std::cerr << "clothsim: output failed: " << error.what()
+                    << "; the run stops here, every file written before is complete"
+                    << std::endl;
+        return 2;
+      }
+    catch (const Interrupted &interruption)
+      {
+        if (is_root)
+          std::cerr << "clothsim: " << interruption.what() << std::endl;
+        return interruption.exit_code();
+      }
+    catch (const std::bad_alloc &)
+      {
+        return stop_on_defect(communicator,
+                              "out of memory (reduce 'Mesh/Global refinements' or run on "
+                              "more MPI ranks)");
+      }
+    catch (const std::exception &error)
+      {
+        return stop_on_defect(communicator,
+                              std::string("internal error: ") + error.what());
       }
   }
 } // namespace clothsim

@@ -3,8 +3,10 @@
 #include <deal.II/base/convergence_table.h>
 
 #include "app/study_run.h"
+#include "io/collective.h"
 #include "io/input_error.h"
 #include "io/line_plot.h"
+#include "io/output_file.h"
 #include "scene/scene.h"
 
 #include <cmath>
@@ -177,23 +179,24 @@ namespace clothsim
     void
     write_csv(const std::vector<Study> &studies, const std::string &file)
     {
-      std::ofstream csv(file);
-      csv << "study,level,size,unknowns,quantity,reference,error,observed_order\n"
-          << std::setprecision(10);
-      for (const Study &study : studies)
-        for (const Quantity &quantity : study.quantities)
-          for (unsigned int i = 0; i < study.runs.size(); ++i)
-            {
-              if (!std::isfinite(quantity.errors[i]))
-                continue;
-              const double order = observed_order(quantity.errors, i);
-              csv << study.name << ',' << i << ',' << study.sizes[i] << ','
-                  << study.runs[i].unknowns << ',' << quantity.name << ",\""
-                  << quantity.reference << "\"," << quantity.errors[i] << ',';
-              if (std::isfinite(order))
-                csv << order;
-              csv << '\n';
-            }
+      io::write_file_atomically(file, [&](std::ostream &csv) {
+        csv << "study,level,size,unknowns,quantity,reference,error,observed_order\n"
+            << std::setprecision(10);
+        for (const Study &study : studies)
+          for (const Quantity &quantity : study.quantities)
+            for (unsigned int i = 0; i < study.runs.size(); ++i)
+              {
+                if (!std::isfinite(quantity.errors[i]))
+                  continue;
+                const double order = observed_order(quantity.errors, i);
+                csv << study.name << ',' << i << ',' << study.sizes[i] << ','
+                    << study.runs[i].unknowns << ',' << quantity.name << ",\""
+                    << quantity.reference << "\"," << quantity.errors[i] << ',';
+                if (std::isfinite(order))
+                  csv << order;
+                csv << '\n';
+              }
+      });
     }
 
     void
@@ -312,21 +315,23 @@ namespace clothsim
         studies.push_back(std::move(study));
       }
 
-    if (is_root)
-      {
-        for (const Study &study : studies)
-          {
-            if (study.quantities.empty())
-              std::cout << study.name
-                        << " convergence: fewer than two runs completed, no errors\n";
-            else
-              print_table(study, std::cout);
-          }
-        write_csv(studies, directory + "/convergence.csv");
-        write_plot(studies, directory + "/convergence.png");
-        std::cout << "wrote " << directory << "/convergence.csv and convergence.png"
-                  << std::endl;
-      }
+    io::run_collectively(communicator, [&]() {
+      if (is_root)
+        {
+          for (const Study &study : studies)
+            {
+              if (study.quantities.empty())
+                std::cout << study.name
+                          << " convergence: fewer than two runs completed, no errors\n";
+              else
+                print_table(study, std::cout);
+            }
+          write_csv(studies, directory + "/convergence.csv");
+          write_plot(studies, directory + "/convergence.png");
+          std::cout << "wrote " << directory << "/convergence.csv and convergence.png"
+                    << std::endl;
+        }
+    });
     return all_completed ? 0 : 2;
   }
 } // namespace clothsim

@@ -1,11 +1,12 @@
 #include "app/model_comparison.h"
 
 #include "io/line_plot.h"
+#include "io/output_file.h"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 namespace clothsim
@@ -78,7 +79,7 @@ namespace clothsim
     for (const auto &[name, point] : probe_points)
       probe_vertices.push_back(find_vertex(first, point));
 
-    std::ofstream csv(directory + "/comparison.csv");
+    std::ostringstream csv;
     csv << "time,quantity,difference,relative_difference\n" << std::setprecision(10);
     // Probe histories for the plot: [probe][model] -> (times, displacement components).
     std::vector<std::array<std::vector<std::array<double, 4>>, 2>> histories(
@@ -120,13 +121,17 @@ namespace clothsim
         figures.largest_max = std::max(figures.largest_max, largest);
       }
 
-    std::ofstream runtimes(directory + "/runtimes.csv");
+    io::write_file_atomically(directory + "/comparison.csv",
+                              [&csv](std::ostream &out) { out << csv.str(); });
+    std::ostringstream runtimes;
     runtimes << "model,integrator,time_step,steps,newton_iterations,wall_seconds,"
                 "completed\n";
     for (const ComparedRun *run : {&fem, &mass_spring})
       runtimes << run->model << ',' << run->integrator << ',' << run->time_step << ','
                << run->summary.steps << ',' << run->summary.newton_iterations << ','
                << run->wall_seconds << ',' << (run->completed ? "true" : "false") << '\n';
+    io::write_file_atomically(directory + "/runtimes.csv",
+                              [&runtimes](std::ostream &out) { out << runtimes.str(); });
 
     // One panel per probe: the displacement component that moves most, both models.
     std::vector<io::PlotPanel> panels;

@@ -3,12 +3,16 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
+#include "io/collective.h"
+#include "io/input_error.h"
+#include "io/output_file.h"
 #include "time/explicit_stepper.h"
 #include "time/time_stepper.h"
 
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace clothsim
 {
@@ -16,36 +20,152 @@ namespace clothsim
   {
     namespace fs = std::filesystem;
 
-    // Creates the directory and removes frames of an earlier run in it.
+    // Creates the directory (an InputError if that is impossible, after removing any
+    // parent it created) and removes the frames of an earlier run in it.
     void
     prepare_output_directory(const std::string &directory)
     {
-      fs::create_directories(directory);
-      for (const auto &entry : fs::directory_iterator(directory))
+      std::error_code error;
+      // The directories on the way that do not exist yet, deepest first: removed again
+      // if the directory cannot be made.
+      std::vector<fs::path> missing;
+      fs::path              prefix;
+      for (const fs::path &part : fs::absolute(directory, error))
         {
-          const std::string name = entry.path().filename().string();
-          if (name.rfind("solution", 0) == 0)
-            fs::remove(entry.path());
+          prefix /= part;
+          std::error_code       status_error;
+          const fs::file_status status = fs::symlink_status(prefix, status_error);
+          if (status.type() == fs::file_type::not_found)
+            missing.insert(missing.begin(), prefix);
+          else if (status_error)
+            break;
         }
+      error.clear();
+      fs::create_directories(directory, error);
+      if (!error && !fs::is_directory(directory, error))
+        error = std::make_error_code(std::errc::not_a_directory);
+      if (error)
+        {
+          std::error_code ignored;
+          for (const fs::path &path : missing)
+            fs::remove(path, ignored); // only directories made here, and empty
+          throw InputError(directory,
+                           "",
+                           "cannot create the output directory: " + error.message());
+        }
+      for (fs::directory_iterator entry(directory, error), end; !error && entry != end;
+           entry.increment(error))
+        {
+          const std::string name = entry->path().filename().string();
+          if (name.rfind("solution", 0) == 0)
+            fs::remove(entry->path(), error);
+        }
+      if (error)
+        throw io::OutputError(directory,
+                              "cannot remove the frames of an earlier run: " +
+                                error.message());
     }
 
+    // original.prm (the input as given, with the command line's overrides) and
+    // parameters.prm (every parameter's value), each written whole.
     void
     write_input_copies(const std::string      &directory,
                        const ParameterInput   &input,
                        const ParameterHandler &prm)
     {
-      fs::copy_file(input.file,
-                    directory + "/original.prm",
-                    fs::copy_options::overwrite_existing);
-      if (!input.overrides.empty() && fs::path(input.file).extension() != ".json")
+      std::ifstream      in(input.file, std::ios::binary);
+      std::ostringstream original;
+      original << in.rdbuf();
+      if (!in)
+        throw InputError(input.file, "", "cannot be read again for original.prm");
+      io::write_file_atomically(directory + "/original.prm", [&](std::ostream &out) {
+        out << original.str();
+        if (!input.overrides.empty() && fs::path(input.file).extension() != ".json")
+          {
+            out << "\n# Command-line overrides:\n";
+            for (const std::string &assignment : input.overrides)
+              out << "#   --set \"" << assignment << "\"\n";
+          }
+      });
+      io::write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
+        prm.print_parameters(out, ParameterHandler::PRM);
+      });
+    }
+
+    // The time loop with its timer, then the run's figures. An output error or an
+    // interruption is handed back in `stopped`, for the caller to throw once the timer is
+    // gone (its destructor warns when an exception is in flight).
+    RunOutcome
+    run_steps(Scene                             &scene,
+              const std::string                 &directory,
+              ConditionalOStream                &pcout,
+              const OutputWriter::FrameObserver &observer,
+              std::exception_ptr                &stopped)
+    {
+      const MPI_Comm    communicator = scene.model->get_communicator();
+      const bool        is_root    = Utilities::MPI::this_mpi_process(communicator) == 0;
+      const Parameters &parameters = scene.parameters();
+      const ClothModel &model      = *scene.model;
+      TimerOutput timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
+      Timer       wall_clock;
+      RunOutcome  outcome;
+      try
         {
-          std::ofstream out(directory + "/original.prm", std::ios::app);
-          out << "\n# Command-line overrides:\n";
-          for (const std::string &assignment : input.overrides)
-            out << "#   --set \"" << assignment << "\"\n";
+          OutputWriter output(directory,
+                              communicator,
+                              model.output_piece(),
+                              scene.probes,
+                              model.energy_columns(),
+                              parameters.output.write_vtk);
+          output.set_frame_observer(observer);
+          if (is_explicit(parameters.time.integrator))
+            outcome.summary =
+              ExplicitStepper(parameters, *scene.model, output, pcout, timer).run();
+          else
+            outcome.summary =
+              TimeStepper(parameters, *scene.model, output, pcout, timer).run();
+          outcome.completed = true;
         }
-      std::ofstream out(directory + "/parameters.prm");
-      prm.print_parameters(out, ParameterHandler::PRM);
+      catch (const SimulationError &error)
+        {
+          outcome.failure = error.what();
+          pcout << std::endl;
+          if (is_root)
+            std::cerr << "clothsim: simulation failed: " << error.what() << std::endl;
+        }
+      catch (...)
+        {
+          stopped = std::current_exception();
+        }
+      outcome.wall_seconds = wall_clock.wall_time();
+      if (!outcome.completed)
+        return outcome;
+      const RunSummary &summary = outcome.summary;
+      pcout << "done: " << summary.steps << " steps in " << outcome.wall_seconds
+            << " s; Newton iterations " << summary.newton_iterations << " ("
+            << double(summary.newton_iterations) / std::max(1u, summary.steps)
+            << " per step), linear iterations " << summary.linear_iterations << " ("
+            << double(summary.linear_iterations) / std::max(1u, summary.newton_iterations)
+            << " per Newton step), tangents " << summary.tangents << ", step halvings "
+            << summary.retries << std::endl;
+      if (parameters.time.adaptive_time_steps)
+        {
+          pcout << "estimated error at the end: " << summary.estimated_error
+                << " m (the accepted steps' local error estimates, summed";
+          if (parameters.time.accuracy_target > 0.)
+            pcout << "; accuracy target " << parameters.time.accuracy_target << " m";
+          pcout << "); " << summary.rejected << " steps rejected" << std::endl;
+        }
+      timer.print_summary();
+      // The assembly's cost per term: a term the scene does not need is not there.
+      const physics::Model &physics = model.get_physics();
+      pcout
+        << "assembly time per term (element terms estimated from every 64th triangle):";
+      for (unsigned int k = 0; k < physics.terms().size(); ++k)
+        pcout << (k == 0 ? " " : ", ") << physics.terms()[k]->name() << " "
+              << physics.term_seconds()[k] << " s";
+      pcout << std::endl;
+      return outcome;
     }
 
   } // namespace
@@ -62,12 +182,13 @@ namespace clothsim
     const bool        is_root      = Utilities::MPI::this_mpi_process(communicator) == 0;
     const Parameters &parameters   = scene.parameters();
     const ClothModel &model        = *scene.model;
-    if (is_root)
-      {
-        prepare_output_directory(directory);
-        write_input_copies(directory, scene.input, scene.prm);
-      }
-    MPI_Barrier(communicator);
+    io::run_collectively(communicator, [&]() {
+      if (is_root)
+        {
+          prepare_output_directory(directory);
+          write_input_copies(directory, scene.input, scene.prm);
+        }
+    });
 
     pcout << "clothsim: " << file << "\n"
           << "  mesh " << scene.mesh_file << ": " << model.n_vertices() << " vertices, "
@@ -106,60 +227,10 @@ namespace clothsim
       pcout << "  probe " << probe.name << " at vertex " << probe.reference_point << "\n";
     pcout << "  output: " << directory << std::endl;
 
-    TimerOutput  timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
-    OutputWriter output(directory,
-                        communicator,
-                        model.output_piece(),
-                        scene.probes,
-                        model.energy_columns(),
-                        parameters.output.write_vtk);
-    output.set_frame_observer(observer);
-    Timer      wall_clock;
-    RunOutcome outcome;
-    try
-      {
-        if (is_explicit(parameters.time.integrator))
-          outcome.summary =
-            ExplicitStepper(parameters, *scene.model, output, pcout, timer).run();
-        else
-          outcome.summary =
-            TimeStepper(parameters, *scene.model, output, pcout, timer).run();
-        outcome.completed = true;
-      }
-    catch (const SimulationError &error)
-      {
-        outcome.failure = error.what();
-        pcout << std::endl;
-        if (is_root)
-          std::cerr << "clothsim: simulation failed: " << error.what() << std::endl;
-      }
-    outcome.wall_seconds = wall_clock.wall_time();
-    if (!outcome.completed)
-      return outcome;
-    const RunSummary &summary = outcome.summary;
-    pcout << "done: " << summary.steps << " steps in " << outcome.wall_seconds
-          << " s; Newton iterations " << summary.newton_iterations << " ("
-          << double(summary.newton_iterations) / std::max(1u, summary.steps)
-          << " per step), linear iterations " << summary.linear_iterations << " ("
-          << double(summary.linear_iterations) / std::max(1u, summary.newton_iterations)
-          << " per Newton step), tangents " << summary.tangents << ", step halvings "
-          << summary.retries << std::endl;
-    if (parameters.time.adaptive_time_steps)
-      {
-        pcout << "estimated error at the end: " << summary.estimated_error
-              << " m (the accepted steps' local error estimates, summed";
-        if (parameters.time.accuracy_target > 0.)
-          pcout << "; accuracy target " << parameters.time.accuracy_target << " m";
-        pcout << "); " << summary.rejected << " steps rejected" << std::endl;
-      }
-    timer.print_summary();
-    // The assembly's cost per term: a term the scene does not need is not there.
-    const physics::Model &physics = model.get_physics();
-    pcout << "assembly time per term (element terms estimated from every 64th triangle):";
-    for (unsigned int k = 0; k < physics.terms().size(); ++k)
-      pcout << (k == 0 ? " " : ", ") << physics.terms()[k]->name() << " "
-            << physics.term_seconds()[k] << " s";
-    pcout << std::endl;
+    std::exception_ptr stopped;
+    const RunOutcome   outcome = run_steps(scene, directory, pcout, observer, stopped);
+    if (stopped)
+      std::rethrow_exception(stopped);
     return outcome;
   }
 

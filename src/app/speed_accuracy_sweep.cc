@@ -3,8 +3,10 @@
 #include <deal.II/base/utilities.h>
 
 #include "app/study_run.h"
+#include "io/collective.h"
 #include "io/input_error.h"
 #include "io/line_plot.h"
+#include "io/output_file.h"
 #include "scene/scene.h"
 
 #include <algorithm>
@@ -75,19 +77,20 @@ namespace clothsim
               const SweepPoint              &reference,
               const std::string             &file)
     {
-      std::ofstream csv(file);
-      csv << "setting,runtime_seconds,error,rms_error,steps,newton_iterations,status,"
-             "on_front\n"
-          << std::setprecision(8);
-      const auto row = [&csv](const SweepPoint &point, const std::string &setting) {
-        csv << '"' << setting << "\"," << point.run.wall_seconds << ',' << point.error
-            << ',' << point.rms_error << ',' << point.run.summary.steps << ','
-            << point.run.summary.newton_iterations << ',' << point.status << ','
-            << (point.on_front ? "true" : "false") << '\n';
-      };
-      for (const SweepPoint &point : points)
-        row(point, joined(point.setting));
-      row(reference, "reference: " + joined(reference.setting));
+      io::write_file_atomically(file, [&](std::ostream &csv) {
+        csv << "setting,runtime_seconds,error,rms_error,steps,newton_iterations,status,"
+               "on_front\n"
+            << std::setprecision(8);
+        const auto row = [&csv](const SweepPoint &point, const std::string &setting) {
+          csv << '"' << setting << "\"," << point.run.wall_seconds << ',' << point.error
+              << ',' << point.rms_error << ',' << point.run.summary.steps << ','
+              << point.run.summary.newton_iterations << ',' << point.status << ','
+              << (point.on_front ? "true" : "false") << '\n';
+        };
+        for (const SweepPoint &point : points)
+          row(point, joined(point.setting));
+        row(reference, "reference: " + joined(reference.setting));
+      });
     }
 
     void
@@ -322,26 +325,28 @@ namespace clothsim
         points.push_back(std::move(point));
       }
 
-    if (is_root)
-      {
-        mark_front(points);
-        write_csv(points, reference, directory + "/pareto.csv");
-        write_plot(points, directory + "/pareto.png");
-        std::cout << "Pareto front (runtime, error at the end):\n";
-        std::vector<const SweepPoint *> front;
-        for (const SweepPoint &point : points)
-          if (point.on_front)
-            front.push_back(&point);
-        std::sort(front.begin(), front.end(), [](const auto *a, const auto *b) {
-          return a->run.wall_seconds < b->run.wall_seconds;
-        });
-        for (const SweepPoint *point : front)
-          std::cout << "  " << std::setw(9) << point->run.wall_seconds << " s  "
-                    << std::setw(12) << point->error << " m  " << joined(point->setting)
-                    << "\n";
-        print_fastest(points, std::cout);
-        std::cout << "wrote " << directory << "/pareto.csv and pareto.png" << std::endl;
-      }
+    io::run_collectively(communicator, [&]() {
+      if (is_root)
+        {
+          mark_front(points);
+          write_csv(points, reference, directory + "/pareto.csv");
+          write_plot(points, directory + "/pareto.png");
+          std::cout << "Pareto front (runtime, error at the end):\n";
+          std::vector<const SweepPoint *> front;
+          for (const SweepPoint &point : points)
+            if (point.on_front)
+              front.push_back(&point);
+          std::sort(front.begin(), front.end(), [](const auto *a, const auto *b) {
+            return a->run.wall_seconds < b->run.wall_seconds;
+          });
+          for (const SweepPoint *point : front)
+            std::cout << "  " << std::setw(9) << point->run.wall_seconds << " s  "
+                      << std::setw(12) << point->error << " m  " << joined(point->setting)
+                      << "\n";
+          print_fastest(points, std::cout);
+          std::cout << "wrote " << directory << "/pareto.csv and pareto.png" << std::endl;
+        }
+    });
     return 0;
   }
 } // namespace clothsim

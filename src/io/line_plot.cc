@@ -6,11 +6,11 @@
 #include "io/line_plot.h"
 
 #include "io/line_plot_detail.h"
+#include "io/output_file.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <stdexcept>
 
 namespace clothsim::io
@@ -284,10 +284,8 @@ namespace clothsim::io
       draw_panel(image, panels[i], i * panel_height, panel_height);
     const std::string png = encode_png(image);
 
-    std::ofstream out(file, std::ios::binary);
-    out.write(png.data(), png.size());
-    out.close();
-    if (!out)
-      throw std::runtime_error("cannot write line plot " + file);
+    write_file_atomically(file, [&png](std::ostream &out) {
+      out.write(png.data(), png.size());
+    });
   }
 } // namespace clothsim::io

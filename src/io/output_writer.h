@@ -2,17 +2,19 @@
 
 // Everything a run writes into its output directory while it runs: solution.pvd with one
 // solution-NNNNN.vtu (.pvtu plus one piece per rank under MPI) per output time,
-// probes.csv and statistics.csv. Files are flushed as they are written, and solution.pvd
-// is replaced atomically, so a run that stops early leaves a consistent record of
-// everything up to that point. The writer knows no model: it receives the mesh piece,
-// the probes' dofs, the energy columns' names, and named fields per frame.
+// probes.csv and statistics.csv. Every frame and solution.pvd are written whole under a
+// temporary name and renamed, CSV rows are appended whole (io/output_file.h), so a run
+// that stops early, is killed, or fills the disk leaves a consistent record of everything
+// up to that point. A failed write throws io::OutputError on every rank. The writer knows
+// no model: it receives the mesh piece, the probes' dofs, the energy columns' names, and
+// named fields per frame.
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include "io/output_file.h"
 #include "io/probe_location.h"
 #include "io/vtu_writer.h"
 
-#include <fstream>
 #include <functional>
 #include <string>
 #include <utility>
@@ -81,8 +83,8 @@ namespace clothsim
     const std::size_t                           n_energy_columns;
     const bool                                  write_vtk;
     const bool                                  is_root;
-    std::ofstream                               probes_csv;
-    std::ofstream                               statistics_csv;
+    io::RowFile                                 probes_csv;
+    io::RowFile                                 statistics_csv;
     std::vector<std::pair<double, std::string>> frames;
     FrameObserver                               frame_observer;
   };

@@ -149,8 +149,9 @@ namespace clothsim
     double       end_time;  // s
     double       time_step; // s
     unsigned int max_step_halvings;
-    unsigned int load_steps;          // static mode: initial (or fixed) increments
-    bool         adaptive_load_steps; // static mode: grow increments that converge fast
+    double       minimum_step_fraction; // of the nominal step: the progress guard
+    unsigned int load_steps;            // static mode: initial (or fixed) increments
+    bool         adaptive_load_steps;   // static mode: grow increments that converge fast
     // Adaptive time steps: local error estimate below tolerance + relative ||u||_inf.
     bool   adaptive_time_steps;
     double error_tolerance;          // m

@@ -38,6 +38,15 @@ namespace clothsim
       Patterns::Integer(0, 30),
       "A step whose Newton solve fails is retried with half the step, at most "
       "this many times in a row; then the run stops with an error.");
+    prm.declare_entry(
+      "Minimum time step fraction",
+      "1e-6",
+      Patterns::Double(1e-15, 1.),
+      "Progress guard: the run stops with an error (exit code 2) when the step it "
+      "would take next (after halvings, or as the error control of 'Adaptive time "
+      "steps' proposes it) is below this fraction of 'Time step' (static mode: of "
+      "the first load increment 1/'Load steps'). Such a run could not reach "
+      "'End time' in reasonable time, e.g. an unreachable 'Accuracy target'.");
     prm.declare_entry("Load steps",
                       "10",
                       Patterns::Integer(1, 100000),
@@ -115,6 +124,7 @@ namespace clothsim
     end_time                 = prm.get_double("End time");
     time_step                = prm.get_double("Time step");
     max_step_halvings        = prm.get_integer("Maximum step halvings");
+    minimum_step_fraction    = prm.get_double("Minimum time step fraction");
     load_steps               = prm.get_integer("Load steps");
     adaptive_load_steps      = prm.get_bool("Adaptive load steps");
     adaptive_time_steps      = prm.get_bool("Adaptive time steps");

@@ -15,6 +15,11 @@ namespace clothsim
     // mode: "auto" (updating line only on a terminal), "on", "off". Only `active` ranks
     // print.
     Progress(std::ostream &out, const std::string &mode, const bool active);
+    // Ends an open line, also when a run stops with an exception.
+    ~Progress()
+    {
+      finish();
+    }
 
     // fraction in [0, 1] of the run done, with a short description of the state.
     void

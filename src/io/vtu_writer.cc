@@ -7,6 +7,9 @@
 
 #include "io/vtu_writer.h"
 
+#include "io/collective.h"
+#include "io/output_file.h"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
@@ -15,7 +18,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <locale>
@@ -158,16 +160,9 @@ namespace clothsim::io
           }
     }
 
-    void
-    check_stream(const std::ostream &out, const std::string &path)
-    {
-      if (!out)
-        throw std::runtime_error("write_vtu_frame: cannot write " + path);
-    }
-
     // The .vtu of one piece.
     void
-    write_piece(const std::string  &path,
+    write_piece(std::ostream       &out,
                 const SurfacePiece &piece,
                 const FrameData    &data,
                 const double        time)
@@ -186,8 +181,6 @@ namespace clothsim::io
         }
       const std::vector<std::uint8_t> types(piece.triangles.size(), vtk_triangle);
 
-      std::ofstream out(path, std::ios::binary);
-      check_stream(out, path);
       out.imbue(std::locale::classic());
       out << "<?xml version=\"1.0\"?>\n"
           << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\""
@@ -221,10 +214,6 @@ namespace clothsim::io
       out << "    </Piece>\n"
           << "  </UnstructuredGrid>\n"
           << "</VTKFile>\n";
-      out.flush();
-      check_stream(out, path);
-      out.close();
-      check_stream(out, path);
     }
 
     std::string
@@ -235,13 +224,11 @@ namespace clothsim::io
 
     // The .pvtu listing the pieces of all `n_ranks` ranks and the arrays they hold.
     void
-    write_pvtu(const std::string &path,
+    write_pvtu(std::ostream      &out,
                const std::string &stem,
                const unsigned int n_ranks,
                const FrameData   &data)
     {
-      std::ofstream out(path);
-      check_stream(out, path);
       out << "<?xml version=\"1.0\"?>\n"
           << "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\""
           << byte_order() << "\" header_type=\"UInt64\">\n"
@@ -262,10 +249,6 @@ namespace clothsim::io
         out << "    <Piece Source=\"" << piece_name(stem, r) << "\"/>\n";
       out << "  </PUnstructuredGrid>\n"
           << "</VTKFile>\n";
-      out.flush();
-      check_stream(out, path);
-      out.close();
-      check_stream(out, path);
     }
   } // namespace
 
@@ -282,29 +265,19 @@ namespace clothsim::io
     const unsigned int rank    = dealii::Utilities::MPI::this_mpi_process(communicator);
     const std::string  record  = stem + (n_ranks == 1 ? ".vtu" : ".pvtu");
 
-    // Errors are collected, not thrown at once, so that every rank reaches the vote
-    // below.
-    std::string error;
-    try
-      {
-        const std::string path =
-          directory + "/" + (n_ranks == 1 ? record : piece_name(stem, rank));
-        check_piece(path, piece, data);
-        write_piece(path, piece, data, time);
-        if (n_ranks > 1 && rank == 0)
-          write_pvtu(directory + "/" + record, stem, n_ranks, data);
-      }
-    catch (const std::exception &e)
-      {
-        error = e.what();
-      }
-
-    // All ranks return, or all throw.
-    if (dealii::Utilities::MPI::max(error.empty() ? 0u : 1u, communicator) != 0)
-      throw std::runtime_error(error.empty() ? "write_vtu_frame: another rank could not "
-                                               "write its part of " +
-                                                 directory + "/" + record
-                                             : error);
+    // Each file is written whole or not at all; an error on any rank reaches all.
+    run_collectively(communicator, [&]() {
+      const std::string path =
+        directory + "/" + (n_ranks == 1 ? record : piece_name(stem, rank));
+      check_piece(path, piece, data);
+      write_file_atomically(path, [&](std::ostream &out) {
+        write_piece(out, piece, data, time);
+      });
+      if (n_ranks > 1 && rank == 0)
+        write_file_atomically(directory + "/" + record, [&](std::ostream &out) {
+          write_pvtu(out, stem, n_ranks, data);
+        });
+    });
     return record;
   }
 } // namespace clothsim::io

@@ -42,10 +42,11 @@ namespace clothsim::io
   // `directory/stem.pvtu` listing the pieces and the arrays. `time` (s) goes into every
   // .vtu as FieldData "TIME" (as deal.II does, so that ParaView shows the time). Returns
   // the name of the record to list in the .pvd (stem.vtu or stem.pvtu, without
-  // directory). Collective over `communicator`: if any rank cannot write its file, or its
+  // directory). Each file is written whole or not at all (io/output_file.h). Collective
+  // over `communicator`: if any rank cannot write its file (io::OutputError), or its
   // piece and fields do not fit together (a field of the wrong size, n_components not 1
-  // or 3, a vertex index out of range, a name with one of <>&"), every rank throws
-  // std::runtime_error, naming the path on the rank that failed.
+  // or 3, a vertex index out of range, a name with one of <>&"; std::runtime_error),
+  // every rank throws, naming the path on the rank that failed.
   std::string
   write_vtu_frame(const std::string  &directory,
                   const std::string  &stem,

@@ -2,6 +2,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include "io/collective.h"
+
 #include <filesystem>
 
 namespace clothsim
@@ -29,13 +31,17 @@ namespace clothsim
     scene->input     = read_parameters(scene->prm, parameter_file, overrides);
     scene->mesh_file = resolve_mesh_file(scene->input);
 
-    // Rank 0 first: it may have to generate the .msh from its .geo.
+    // Rank 0 first: it may have to generate the .msh from its .geo. An error on any
+    // rank reaches all of them (io/collective.h).
     const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
-    if (is_root)
-      scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
-    MPI_Barrier(communicator);
-    if (!is_root)
-      scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
+    io::run_collectively(communicator, [&]() {
+      if (is_root)
+        scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
+    });
+    io::run_collectively(communicator, [&]() {
+      if (!is_root)
+        scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
+    });
 
     scene->model = std::make_unique<ClothModel>(communicator,
                                                 scene->parameters(),

@@ -9,6 +9,7 @@
 #include <NOX_Epetra_Vector.H>
 #include <NOX_Solver_LineSearchBased.H>
 #include <NOX_StatusTest_Combo.H>
+#include <NOX_StatusTest_Divergence.H>
 #include <NOX_StatusTest_FiniteValue.H>
 #include <NOX_StatusTest_MaxIters.H>
 #include <NOX_StatusTest_NormF.H>
@@ -17,11 +18,16 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 
 namespace clothsim
 {
   namespace
   {
+    // A Newton iterate whose residual exceeds this factor times the initial residual has
+    // diverged.
+    constexpr double divergence_factor = 1e10;
+
     using TrilinosVector = TrilinosWrappers::MPI::Vector;
 
     void
@@ -493,8 +499,15 @@ namespace clothsim
     auto max_iterations = Teuchos::rcp(
       new NOX::StatusTest::MaxIters(single_step ? 1 : parameters.max_iterations));
     auto finite = Teuchos::rcp(new NOX::StatusTest::FiniteValue);
+    // Divergence: a residual 1e10 times the initial one (or the tolerance) is no
+    // approach to a solution; failing at once lets the step be halved instead of
+    // iterating on numbers that only grow.
+    const double divergence_threshold =
+      divergence_factor * std::max(initial_norm, parameters.absolute_tolerance);
+    auto divergence = Teuchos::rcp(new NOX::StatusTest::Divergence(divergence_threshold));
     auto status = Teuchos::rcp(new NOX::StatusTest::Combo(NOX::StatusTest::Combo::OR));
     status->addStatusTest(finite);
+    status->addStatusTest(divergence);
     status->addStatusTest(converged);
     status->addStatusTest(max_iterations);
     if (parameters.method == NewtonMethod::modified)
@@ -549,6 +562,13 @@ namespace clothsim
           result.failure = context.failure;
         else if (finite->getStatus() == NOX::StatusTest::Failed)
           result.failure = "residual became NaN or infinite";
+        else if (divergence->getStatus() == NOX::StatusTest::Failed)
+          {
+            std::ostringstream message;
+            message << "diverged: the residual grew from " << initial_norm << " to "
+                    << result.residual_norm << " N";
+            result.failure = message.str();
+          }
         else if (max_iterations->getStatus() == NOX::StatusTest::Failed)
           result.failure = "no convergence in " +
                            std::to_string(parameters.max_iterations) + " iterations";

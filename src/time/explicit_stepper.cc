@@ -225,6 +225,7 @@ namespace clothsim
     bool         warned = dt > safe_fraction * critical.estimate;
     while (time < end - epsilon)
       {
+        stop_if_interrupted(step, time);
         // Land on output times and the end exactly.
         const double time_new = std::min({time + dt, next_output, end});
         const double h        = time_new - time;

@@ -1,6 +1,7 @@
 #include "time/stepper_core.h"
 
 #include <cmath>
+#include <sstream>
 
 namespace clothsim
 {
@@ -151,5 +152,42 @@ namespace clothsim
     output.write_state(step, time, u_ghosted, [this]() {
       return model.output_fields(u_ghosted, v_ghosted);
     });
+    frame_step = step;
+    any_frame  = true;
+  }
+
+
+  void
+  StepperCore::stop_if_interrupted(const unsigned int step, const double time)
+  {
+    const int signal = received_signal(model.get_communicator());
+    if (signal == 0)
+      return;
+    if (!any_frame || frame_step != step)
+      write_frame(step, time);
+    std::ostringstream message;
+    message << "interrupted by " << signal_name(signal) << " after step " << step
+            << " (t = " << time << "); its state is the last frame, and every file "
+            << "written is complete";
+    throw Interrupted(signal, message.str());
+  }
+
+
+  void
+  StepperCore::check_step_floor(const double       dt,
+                                const double       nominal,
+                                const double       time,
+                                const std::string &why) const
+  {
+    const double floor = parameters.time.minimum_step_fraction * nominal;
+    if (dt >= floor)
+      return;
+    std::ostringstream message;
+    message << why << " asks for dt = " << dt << " at t = " << time
+            << ", below the floor " << floor << " ('Time/Minimum time step fraction' "
+            << parameters.time.minimum_step_fraction << " x the step " << nominal
+            << "): the run cannot make progress and stops here; output up to t = " << time
+            << " is kept";
+    throw SimulationError(message.str());
   }
 } // namespace clothsim

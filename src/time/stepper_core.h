@@ -9,6 +9,7 @@
 
 #include "io/output_writer.h"
 #include "io/parameters.h"
+#include "time/interruption.h"
 #include "time/model_interface.h"
 
 #include <stdexcept>
@@ -130,6 +131,21 @@ namespace clothsim
     void
     write_frame(const unsigned int step, const double time);
 
+    // After every step attempt: if SIGINT or SIGTERM arrived on any rank, writes the
+    // frame of the last accepted state (step, time; u_ghosted, v_ghosted) unless it is
+    // written, and throws Interrupted. Collective.
+    void
+    stop_if_interrupted(const unsigned int step, const double time);
+
+    // Stops the run (SimulationError) when the step size `dt` that the run would take
+    // next falls below the floor 'Minimum time step fraction' x the nominal step
+    // `nominal`: the run could not make progress. `why`: what asks for such a step.
+    void
+    check_step_floor(const double       dt,
+                     const double       nominal,
+                     const double       time,
+                     const std::string &why) const;
+
     const Parameters   &parameters;
     ModelInterface     &model;
     OutputWriter       &output;
@@ -141,6 +157,8 @@ namespace clothsim
     double     dissipated = 0.;      // J, work done against damping so far
 
   private:
-    VectorType increment, solved_ghosted; // ghosted work vectors of add_dissipation
+    VectorType   increment, solved_ghosted; // ghosted work vectors of add_dissipation
+    unsigned int frame_step = 0;            // the step of the last written frame
+    bool         any_frame  = false;
   };
 } // namespace clothsim

@@ -1,0 +1,18 @@
+#pragma once
+
+// Errors that happen on some MPI ranks only (rank 0 reads the mesh, writes the CSVs, ...)
+// must reach every rank, or the others wait forever in their next collective call.
+// run_collectively runs an action on every rank and then agrees: if it threw on any rank,
+// every rank throws the error of the lowest such rank, with its type (InputError,
+// io::OutputError, std::bad_alloc; anything else as std::runtime_error) and message.
+
+#include <mpi.h>
+
+#include <functional>
+
+namespace clothsim::io
+{
+  // Collective over `communicator`: every rank must call it.
+  void
+  run_collectively(const MPI_Comm communicator, const std::function<void()> &action);
+} // namespace clothsim::io
