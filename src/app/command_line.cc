@@ -12,7 +12,8 @@ namespace clothsim
       {
         const std::string argument = argv[i];
         const auto        value    = [&]() -> std::string {
-          if (i + 1 >= argc)
+          // An option in its place means the value was forgotten.
+          if (i + 1 >= argc || std::string(argv[i + 1]).rfind("--", 0) == 0)
             throw InputError("", argument, "expects a value");
           return argv[++i];
         };

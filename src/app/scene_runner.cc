@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <regex>
 #include <sstream>
 
 namespace clothsim
@@ -21,7 +22,8 @@ namespace clothsim
     namespace fs = std::filesystem;
 
     // Creates the directory (an InputError if that is impossible, after removing any
-    // parent it created) and removes the frames of an earlier run in it.
+    // parent it created) and removes the frames of an earlier run in it (and any left
+    // under a temporary name).
     void
     prepare_output_directory(const std::string &directory)
     {
@@ -56,8 +58,11 @@ namespace clothsim
       for (fs::directory_iterator entry(directory, error), end; !error && entry != end;
            entry.increment(error))
         {
-          const std::string name = entry->path().filename().string();
-          if (name.rfind("solution", 0) == 0)
+          // Only the names a run writes: a directory given with --output-dir may hold
+          // other files.
+          static const std::regex frame_file(
+            "solution(-[0-9]{5}([.][0-9]{4})?[.](vtu|pvtu)|[.]pvd)([.]partial)?");
+          if (std::regex_match(entry->path().filename().string(), frame_file))
             fs::remove(entry->path(), error);
         }
       if (error)
