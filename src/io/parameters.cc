@@ -46,7 +46,9 @@ namespace clothsim
       const auto stacktrace = text.find("Stacktrace:");
       if (stacktrace != std::string::npos)
         text = text.substr(0, stacktrace);
-      text = std::regex_replace(text, std::regex("[\\s-]*\\n[\\s-]*"), " ");
+      // Drop deal.II's separator lines of dashes only: a value's own minus sign stays.
+      text =
+        std::regex_replace(text, std::regex("(^|\\n)[ \\t]*-{3,}[ \\t]*(?=\\n|$)"), "\n");
       text = std::regex_replace(text, std::regex("\\s+"), " ");
       text = std::regex_replace(text, std::regex("^ | $"), "");
       return text;
