@@ -9,6 +9,7 @@
 #include <deal.II/base/utilities.h>
 
 #include "io/input_error.h"
+#include "io/input_file.h"
 #include "io/parameters_detail.h"
 
 #include <filesystem>
@@ -159,8 +160,11 @@ namespace clothsim
     input.overrides = overrides;
     input.directory = std::filesystem::path(file).parent_path().string();
 
-    if (!std::filesystem::is_regular_file(file))
+    const std::filesystem::file_type type = input_file_type(file);
+    if (type == std::filesystem::file_type::not_found)
       throw InputError(file, "", "parameter file not found");
+    if (type != std::filesystem::file_type::regular)
+      throw InputError(file, "", "not a regular file; expected a parameter file");
     {
       std::ifstream probe(file);
       if (!probe)
