@@ -1,9 +1,13 @@
 # Runs clothsim on bad input and checks what a user must see:
 #   exit code 1, exactly one line on stderr naming the file (FILE_REGEX) and matching
-#   MESSAGE_REGEX, and no output directory created.
+#   MESSAGE_REGEX, and no output directory created; with -DABSENT_FILE=..., that file
+#   (e.g. a .msh generated from a bad .geo) does not exist afterwards either.
 # Usage: cmake -DCLOTHSIM=... -DOUTPUT_DIR=... -DFILE_REGEX=... -DMESSAGE_REGEX=...
-#              -DARGS="a;b;c" -P expect_input_error.cmake
+#              -DARGS="a;b;c" [-DABSENT_FILE=...] -P expect_input_error.cmake
 file(REMOVE_RECURSE "${OUTPUT_DIR}")
+if(ABSENT_FILE)
+  file(REMOVE "${ABSENT_FILE}")
+endif()
 execute_process(COMMAND "${CLOTHSIM}" ${ARGS} --output-dir "${OUTPUT_DIR}"
                 RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
 string(STRIP "${err}" err)
@@ -26,4 +30,7 @@ if(NOT err MATCHES "${MESSAGE_REGEX}")
 endif()
 if(EXISTS "${OUTPUT_DIR}")
   message(FATAL_ERROR "an output directory was created: ${OUTPUT_DIR}")
+endif()
+if(ABSENT_FILE AND EXISTS "${ABSENT_FILE}")
+  message(FATAL_ERROR "a file was left behind: ${ABSENT_FILE}")
 endif()

@@ -189,10 +189,28 @@ namespace clothsim::mesh::detail
       generate_msh(msh_file, geo_file);
 
     RawMesh raw;
-    call_gmsh(msh_file, "gmsh cannot read it", [&]() {
-      gmsh::open(msh_file);
-      raw = read_model(msh_file);
-    });
+    try
+      {
+        call_gmsh(msh_file, "gmsh cannot read it", [&]() {
+          gmsh::open(msh_file);
+          raw = read_model(msh_file);
+        });
+      }
+    catch (...)
+      {
+        if (!have_msh)
+          remove_generated_msh(msh_file);
+        throw;
+      }
+    raw.generated = !have_msh;
     return raw;
+  }
+
+
+  void
+  remove_generated_msh(const std::string &msh_file)
+  {
+    std::error_code error;
+    std::filesystem::remove(msh_file, error);
   }
 } // namespace clothsim::mesh::detail
