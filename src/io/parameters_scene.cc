@@ -41,7 +41,9 @@ namespace clothsim
                       "0",
                       Patterns::Integer(0, 8),
                       "Number of uniform (red) refinements of the mesh as read; each one "
-                      "quarters the triangles' area.");
+                      "quarters the triangles' area. Refused before refining when the "
+                      "run's estimated memory (mesh/memory_estimate.cc) exceeds what "
+                      "the node has available.");
     prm.declare_entry(
       "Surface",
       "flat",
