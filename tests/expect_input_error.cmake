@@ -4,9 +4,10 @@
 # Options: -DMPIEXEC=... -DRANKS=N runs it on N ranks (mpirun's own report of the exit
 # code is removed from stderr first; the error must come once, from rank 0; a hang is
 # caught by the test's TIMEOUT); -DABSENT=path: a path that must not exist afterwards
-# (e.g. a parent directory the run must not leave behind).
+# (e.g. a parent directory, or a .msh generated from a bad .geo, that the run must not
+# leave behind).
 # Usage: cmake -DCLOTHSIM=... -DOUTPUT_DIR=... -DFILE_REGEX=... -DMESSAGE_REGEX=...
-#              -DARGS="a;b;c" -P expect_input_error.cmake
+#              -DARGS="a;b;c" [-DABSENT=...] -P expect_input_error.cmake
 file(REMOVE_RECURSE "${OUTPUT_DIR}")
 if(ABSENT)
   file(REMOVE_RECURSE "${ABSENT}")

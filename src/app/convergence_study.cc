@@ -7,6 +7,7 @@
 #include "io/input_error.h"
 #include "io/line_plot.h"
 #include "io/output_file.h"
+#include "mesh/memory_estimate.h"
 #include "scene/scene.h"
 
 #include <cmath>
@@ -263,6 +264,25 @@ namespace clothsim
                        "--time",
                        "the steps are adaptive; halve 'Time/Error tolerance' instead, or "
                        "turn 'Adaptive time steps' off");
+
+    // The finest mesh must be allowed and fit in memory: found out now, not after the
+    // coarser runs have written their output.
+    if (command_line.space_levels > 0)
+      {
+        mesh::MeshSetup finest;
+        finest.global_refinements = base_level + command_line.space_levels;
+        finest.directors          = base->model->get_discretization().has_directors();
+        if (finest.global_refinements > 8)
+          throw InputError(file,
+                           "--space",
+                           "'Mesh/Global refinements' + K is " +
+                             std::to_string(finest.global_refinements) +
+                             ", beyond its largest value 8");
+        const mesh::MemoryEstimate estimate =
+          mesh::estimate_memory(communicator, base->serial_mesh.n_active_cells(), finest);
+        if (!estimate.fits())
+          throw InputError(file, "--space", estimate.shortage());
+      }
 
     std::vector<Study> studies;
     bool               all_completed = true;

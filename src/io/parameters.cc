@@ -9,6 +9,7 @@
 #include <deal.II/base/utilities.h>
 
 #include "io/input_error.h"
+#include "io/input_file.h"
 #include "io/parameters_detail.h"
 
 #include <filesystem>
@@ -46,7 +47,9 @@ namespace clothsim
       const auto stacktrace = text.find("Stacktrace:");
       if (stacktrace != std::string::npos)
         text = text.substr(0, stacktrace);
-      text = std::regex_replace(text, std::regex("[\\s-]*\\n[\\s-]*"), " ");
+      // Drop deal.II's separator lines of dashes only: a value's own minus sign stays.
+      text =
+        std::regex_replace(text, std::regex("(^|\\n)[ \\t]*-{3,}[ \\t]*(?=\\n|$)"), "\n");
       text = std::regex_replace(text, std::regex("\\s+"), " ");
       text = std::regex_replace(text, std::regex("^ | $"), "");
       return text;
@@ -157,8 +160,11 @@ namespace clothsim
     input.overrides = overrides;
     input.directory = std::filesystem::path(file).parent_path().string();
 
-    if (!std::filesystem::is_regular_file(file))
+    const std::filesystem::file_type type = input_file_type(file);
+    if (type == std::filesystem::file_type::not_found)
       throw InputError(file, "", "parameter file not found");
+    if (type != std::filesystem::file_type::regular)
+      throw InputError(file, "", "not a regular file; expected a parameter file");
     {
       std::ifstream probe(file);
       if (!probe)

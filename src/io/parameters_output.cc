@@ -61,7 +61,8 @@ namespace clothsim
       named_triples_pattern(),
       "Named reference points 'name: X, Y, Z; name2: X, Y, Z' (m). Each snaps to "
       "the nearest mesh vertex; probes.csv records its reference position and "
-      "displacement.");
+      "displacement. A point must lie on the surface: one farther from the "
+      "nearest vertex than the (refined) mesh's longest edge is an error.");
     prm.declare_entry(
       "Probe references",
       "",

@@ -19,7 +19,8 @@ namespace clothsim
       "",
       Patterns::Anything(),
       "Name of the run; output goes to output/<Scene name>/ unless --output-dir "
-      "is given. Empty: the parameter file's name without extension.");
+      "is given. Empty: the parameter file's name without extension. One "
+      "directory name: no '/', not '.' or '..'.");
     prm.declare_entry("Model",
                       "fem",
                       Patterns::Selection("fem|mass-spring"),
@@ -32,14 +33,17 @@ namespace clothsim
       "Mesh file",
       "../meshes/sheet.msh",
       Patterns::FileName(),
-      "gmsh triangle mesh (.msh), relative to this parameter file's directory. "
+      "gmsh triangle mesh (.msh), relative to this parameter file's directory "
+      "(required). "
       "If it is missing but a .geo of the same name exists, gmsh generates it. "
       "Lengths in the mesh are in m.");
     prm.declare_entry("Global refinements",
                       "0",
                       Patterns::Integer(0, 8),
                       "Number of uniform (red) refinements of the mesh as read; each one "
-                      "quarters the triangles' area.");
+                      "quarters the triangles' area. Refused before refining when the "
+                      "run's estimated memory (mesh/memory_estimate.cc) exceeds what "
+                      "the node has available.");
     prm.declare_entry(
       "Surface",
       "flat",
@@ -61,10 +65,22 @@ namespace clothsim
   void
   SceneParameters::parse_parameters(ParameterHandler &prm)
   {
-    name  = prm.get("Scene name");
+    name = prm.get("Scene name");
+    // The name is a directory below the output root: it must not leave it (--output-dir
+    // is the way to write elsewhere).
+    if (name.find('/') != std::string::npos || name == "." || name == "..")
+      throw InputError("",
+                       "Scene name",
+                       "'" + name +
+                         "' is not a plain directory name (no '/', not '.' or '..'); "
+                         "use --output-dir to write elsewhere");
     model = prm.get("Model") == "mass-spring" ? Model::mass_spring : Model::fem;
     prm.enter_subsection("Mesh");
-    mesh_file          = prm.get("Mesh file");
+    mesh_file = prm.get("Mesh file");
+    if (mesh_file.empty())
+      throw InputError("",
+                       "Mesh/Mesh file",
+                       "is empty; expected a gmsh mesh file (.msh)");
     global_refinements = prm.get_integer("Global refinements");
     surface            = prm.get("Surface");
     surface_center     = Point<3>(vector_entry(prm.get("Surface center")));

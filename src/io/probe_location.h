@@ -21,12 +21,13 @@ namespace clothsim
     std::string                            name;
     Point<3>                               reference_point; // the vertex, m
     std::array<types::global_dof_index, 3> dofs;            // x, y, z displacement dofs
+    double distance = 0.; // from the point as given to the vertex, m
 
     template <class Archive>
     void
     serialize(Archive &archive, const unsigned int)
     {
-      archive &name &reference_point &dofs;
+      archive &name &reference_point &dofs &distance;
     }
   };
 } // namespace clothsim

@@ -324,6 +324,18 @@ namespace clothsim::mesh
   }
 
 
+  double
+  Discretization::longest_edge() const
+  {
+    double longest = 0.;
+    for (const Element &element : element_table)
+      for (unsigned int v = 0; v < 3; ++v)
+        longest = std::max(longest,
+                           element.reference[v].distance(element.reference[(v + 1) % 3]));
+    return Utilities::MPI::max(longest, communicator);
+  }
+
+
   std::vector<ProbeLocation>
   Discretization::locate_probes(
     const std::vector<std::pair<std::string, Point<3>>> &points) const
@@ -334,7 +346,7 @@ namespace clothsim::mesh
       {
         // Nearest locally owned vertex (its x dof owned here), then the global minimum.
         double        best = std::numeric_limits<double>::max();
-        ProbeLocation candidate{name, Point<3>(), {{0, 0, 0}}};
+        ProbeLocation candidate{name, Point<3>(), {{0, 0, 0}}, 0.};
         for (const Element &element : element_table)
           for (unsigned int v = 0; v < 3; ++v)
             if (locally_owned_dofs.is_element(element.dofs[3 * v]))
@@ -343,6 +355,7 @@ namespace clothsim::mesh
                 if (distance < best)
                   {
                     best                      = distance;
+                    candidate.distance        = distance;
                     candidate.reference_point = element.reference[v];
                     for (unsigned int d = 0; d < 3; ++d)
                       candidate.dofs[d] = element.dofs[3 * v + d];

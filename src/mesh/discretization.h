@@ -198,7 +198,12 @@ namespace clothsim
       Point<3>
       reference_centroid() const;
 
-      // Snaps each named point to the nearest vertex (the same on every rank).
+      // The longest edge of the (refined) mesh, m (over all ranks).
+      double
+      longest_edge() const;
+
+      // Snaps each named point to the nearest vertex (the same on every rank), with its
+      // distance from the point.
       std::vector<ProbeLocation>
       locate_probes(const std::vector<std::pair<std::string, Point<3>>> &points) const;
 

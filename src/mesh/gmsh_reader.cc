@@ -48,6 +48,25 @@ namespace clothsim::mesh
                 ExcMessage("read_gmsh() needs an empty triangulation"));
 
     const RawMesh raw = load_with_gmsh(msh_file);
+    try
+      {
+        return build_triangulation(msh_file, raw, triangulation);
+      }
+    catch (...)
+      {
+        // A .msh generated from a .geo that yields no usable mesh goes with the error.
+        if (raw.generated)
+          remove_generated_msh(msh_file);
+        throw;
+      }
+  }
+
+
+  MeshGroups
+  detail::build_triangulation(const std::string   &msh_file,
+                              const RawMesh       &raw,
+                              Triangulation<2, 3> &triangulation)
+  {
     if (raw.triangles.empty())
       throw InputError(msh_file, "", "the mesh has no triangles");
 

@@ -59,14 +59,29 @@ namespace clothsim::mesh::detail
     std::vector<RawLineGroup>                 line_groups;
     std::vector<RawPointGroup>                point_groups;
     std::vector<RawSurfaceGroup>              surface_groups;
+    bool generated = false; // this read generated `msh_file` from its .geo
   };
 
 
   // The mesh of `msh_file` as gmsh reads it, in a gmsh session of its own; if the file
   // does not exist but a .geo of the same stem does, gmsh generates it first
-  // (mesh/gmsh_session.cc). Throws InputError.
+  // (mesh/gmsh_session.cc). Throws InputError; a .msh it generated and could not read
+  // is removed.
   RawMesh
   load_with_gmsh(const std::string &msh_file);
+
+  // Removes a .msh that this read generated but that turned out unusable, so that the
+  // next read does not take it for a mesh the user made (errors ignored: nothing to add
+  // to the input error on its way).
+  void
+  remove_generated_msh(const std::string &msh_file);
+
+  // The checks of read_gmsh() on `raw` and the triangulation with its groups built from
+  // it (mesh/gmsh_reader.cc).
+  MeshGroups
+  build_triangulation(const std::string   &msh_file,
+                      const RawMesh       &raw,
+                      Triangulation<2, 3> &triangulation);
 
   // Reads the mesh of the current gmsh model; rejects elements other than 3-node
   // triangles, and 2-node lines in line groups (mesh/gmsh_model.cc). `msh_file` names

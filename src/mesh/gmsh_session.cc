@@ -4,6 +4,7 @@
 #include "mesh/gmsh_reader_detail.h"
 
 #include "io/input_error.h"
+#include "io/input_file.h"
 
 #include <gmsh.h>
 #include <unistd.h>
@@ -169,13 +170,14 @@ namespace clothsim::mesh::detail
   {
     namespace fs = std::filesystem;
 
-    const bool     have_msh = fs::exists(msh_file);
-    const fs::path geo_file = fs::path(msh_file).replace_extension(".geo");
-    if (!have_msh && !fs::exists(geo_file))
+    const fs::file_type msh_type = input_file_type(msh_file);
+    const bool          have_msh = msh_type != fs::file_type::not_found;
+    const fs::path      geo_file = fs::path(msh_file).replace_extension(".geo");
+    if (!have_msh && input_file_type(geo_file.string()) == fs::file_type::not_found)
       throw InputError(msh_file,
                        "",
                        "mesh file not found (nor a .geo to generate it from)");
-    if (have_msh && !fs::is_regular_file(msh_file))
+    if (have_msh && msh_type != fs::file_type::regular)
       throw InputError(msh_file, "", "not a regular file");
 
     std::unique_ptr<GmshSession> session;
@@ -187,10 +189,28 @@ namespace clothsim::mesh::detail
       generate_msh(msh_file, geo_file);
 
     RawMesh raw;
-    call_gmsh(msh_file, "gmsh cannot read it", [&]() {
-      gmsh::open(msh_file);
-      raw = read_model(msh_file);
-    });
+    try
+      {
+        call_gmsh(msh_file, "gmsh cannot read it", [&]() {
+          gmsh::open(msh_file);
+          raw = read_model(msh_file);
+        });
+      }
+    catch (...)
+      {
+        if (!have_msh)
+          remove_generated_msh(msh_file);
+        throw;
+      }
+    raw.generated = !have_msh;
     return raw;
+  }
+
+
+  void
+  remove_generated_msh(const std::string &msh_file)
+  {
+    std::error_code error;
+    std::filesystem::remove(msh_file, error);
   }
 } // namespace clothsim::mesh::detail

@@ -5,6 +5,9 @@
 
 #include "io/input_error.h"
 
+#include <boost/serialization/array.hpp>
+
+#include <cmath>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -29,6 +32,59 @@ namespace clothsim
       for (const std::string &n : names)
         known += (known.empty() ? "" : ", ") + n;
       return known.empty() ? "none" : known;
+    }
+
+    // A rank-independent order of vertices: lexicographic in the reference coordinates.
+    bool
+    precedes(const Point<3> &a, const Point<3> &b)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        if (a[d] != b[d])
+          return a[d] < b[d];
+      return false;
+    }
+
+    // An expression that is inf or NaN at t = 0 would only surface as a failed first
+    // step: evaluate `function` at each (component, vertex) of `samples` and throw an
+    // InputError naming `entry`, the component and a vertex where it is not finite (the
+    // first by component, then position: the same for any number of ranks). Collective.
+    void
+    check_finite(const FunctionParser<3>                              &function,
+                 const std::vector<std::pair<unsigned int, Point<3>>> &samples,
+                 const MPI_Comm                                        communicator,
+                 const std::string                                    &parameter_file,
+                 const std::string                                    &entry)
+    {
+      // component (3: none), vertex x, y, z, value
+      std::array<double, 5> first   = {{3., 0., 0., 0., 0.}};
+      const auto            earlier = [](const std::array<double, 5> &a,
+                              const std::array<double, 5> &b) {
+        if (a[0] != b[0])
+          return a[0] < b[0];
+        return precedes(Point<3>(a[1], a[2], a[3]), Point<3>(b[1], b[2], b[3]));
+      };
+      for (const auto &[component, vertex] : samples)
+        {
+          const double                value  = function.value(vertex, component);
+          const std::array<double, 5> sample = {
+            {double(component), vertex[0], vertex[1], vertex[2], value}};
+          if (!std::isfinite(value) && earlier(sample, first))
+            first = sample;
+        }
+      for (const auto &sample : Utilities::MPI::all_gather(communicator, first))
+        if (earlier(sample, first))
+          first = sample;
+      if (first[0] == 3.)
+        return;
+
+      const unsigned int component   = first[0];
+      const auto         expressions = function.get_expressions();
+      std::ostringstream message;
+      message << "'" << expressions[component] << "' (component "
+              << "xyz"[component] << ") is " << first[4] << " at the vertex (" << first[1]
+              << ", " << first[2] << ", " << first[3]
+              << ") at t = 0; expected a finite value at every vertex";
+      throw InputError(parameter_file, entry, message.str());
     }
   } // namespace
 
@@ -173,6 +229,33 @@ namespace clothsim
                           /*time_dependent=*/false,
                           parameter_file,
                           "Time/Initial velocity");
+
+    // Each expression at t = 0 where it applies: the pinned displacement in the pinned
+    // components, the initial state at every vertex.
+    const MPI_Comm communicator = discretization.get_communicator();
+    std::vector<std::pair<unsigned int, Point<3>>> samples;
+    for (const PinnedDof &pin : pinned)
+      samples.emplace_back(pin.component, pin.reference);
+    pinned_displacement.set_time(0.);
+    check_finite(pinned_displacement,
+                 samples,
+                 communicator,
+                 parameter_file,
+                 "Constraints/Pinned displacement");
+    samples.clear();
+    std::set<types::global_dof_index> seen;
+    for (const auto &element : discretization.elements())
+      for (unsigned int vertex = 0; vertex < 3; ++vertex)
+        if (seen.insert(element.dofs[3 * vertex]).second)
+          for (unsigned int c = 0; c < 3; ++c)
+            samples.emplace_back(c, element.reference[vertex]);
+    check_finite(initial_displacement,
+                 samples,
+                 communicator,
+                 parameter_file,
+                 "Time/Initial displacement");
+    check_finite(
+      initial_velocity, samples, communicator, parameter_file, "Time/Initial velocity");
   }
 
 

@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 
 #include "io/input_error.h"
+#include "mesh/memory_estimate.h"
 #include "physics/bending_term.h"
 #include "physics/damping.h"
 #include "physics/external_loads.h"
@@ -19,8 +20,12 @@ namespace clothsim
 {
   namespace
   {
+    // The mesh set-up of the parameters, once its refinement is known to fit in memory.
     mesh::MeshSetup
-    mesh_setup(const Parameters &parameters)
+    mesh_setup(const MPI_Comm             communicator,
+               const Parameters          &parameters,
+               const std::string         &parameter_file,
+               const Triangulation<2, 3> &serial_mesh)
     {
       mesh::MeshSetup setup;
       setup.global_refinements = parameters.scene.global_refinements;
@@ -29,6 +34,11 @@ namespace clothsim
       setup.axis               = parameters.scene.surface_axis;
       setup.directors =
         parameters.material.bending && parameters.scene.model == Model::fem;
+
+      const mesh::MemoryEstimate estimate =
+        mesh::estimate_memory(communicator, serial_mesh.n_active_cells(), setup);
+      if (!estimate.fits())
+        throw InputError(parameter_file, "Mesh/Global refinements", estimate.shortage());
       return setup;
     }
   } // namespace
@@ -40,7 +50,9 @@ namespace clothsim
                          const Triangulation<2, 3> &serial_mesh,
                          const mesh::MeshGroups    &groups)
     : parameters(parameters)
-    , discretization(communicator, serial_mesh, mesh_setup(parameters))
+    , discretization(communicator,
+                     serial_mesh,
+                     mesh_setup(communicator, parameters, parameter_file, serial_mesh))
   {
     if (!parameters.constraints.clamped_groups.empty() && !parameters.material.bending &&
         parameters.scene.model == Model::fem)

@@ -3,8 +3,10 @@
 #include <deal.II/base/mpi.h>
 
 #include "io/collective.h"
+#include "io/input_error.h"
 
 #include <filesystem>
+#include <sstream>
 
 namespace clothsim
 {
@@ -51,7 +53,22 @@ namespace clothsim
     std::vector<std::pair<std::string, Point<3>>> points;
     for (const Probe &probe : scene->parameters().output.probes)
       points.emplace_back(probe.name, probe.reference_point);
-    scene->probes = scene->model->get_discretization().locate_probes(points);
+    const mesh::Discretization &discretization = scene->model->get_discretization();
+    scene->probes                              = discretization.locate_probes(points);
+    // Every point of a triangle lies within its longest edge of each of its vertices: a
+    // probe farther from the nearest vertex is not on the surface.
+    const double tolerance = discretization.longest_edge();
+    for (const ProbeLocation &probe : scene->probes)
+      if (!(probe.distance <= tolerance))
+        {
+          std::ostringstream message;
+          message << "probe '" << probe.name << "' is " << probe.distance
+                  << " m from the nearest mesh vertex (" << probe.reference_point[0]
+                  << ", " << probe.reference_point[1] << ", " << probe.reference_point[2]
+                  << "), farther than the mesh's longest edge (" << tolerance
+                  << " m): it must lie on the cloth's surface";
+          throw InputError(parameter_file, "Output/Probes", message.str());
+        }
     return scene;
   }
 } // namespace clothsim
