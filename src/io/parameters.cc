@@ -35,6 +35,47 @@ namespace clothsim
 
   namespace
   {
+    // deal.II's parser follows 'INCLUDE file' (or 'include file') lines, with the path as
+    // given, and recurses without a limit: a file that includes itself overflows the
+    // stack. The include graph is walked here first: a cycle, or nesting deeper than
+    // this, is an input error.
+    constexpr unsigned int max_include_depth = 8;
+
+    void
+    check_includes(const std::string &file, std::vector<std::string> &chain)
+    {
+      std::error_code   error;
+      const std::string identity =
+        std::filesystem::weakly_canonical(file, error).string();
+      for (const std::string &outer : chain)
+        if (outer == identity)
+          throw InputError(chain.front(),
+                           "",
+                           "INCLUDE cycle: " + file + " includes itself");
+      if (chain.size() > max_include_depth)
+        throw InputError(chain.front(),
+                         "",
+                         "INCLUDE nested deeper than " +
+                           std::to_string(max_include_depth) + " files (at " + file +
+                           ")");
+      chain.push_back(identity);
+      std::ifstream in(file);
+      std::string   line;
+      while (std::getline(in, line))
+        {
+          line = Utilities::trim(line.substr(0, line.find('#')));
+          if (line.rfind("INCLUDE ", 0) == 0 || line.rfind("include ", 0) == 0)
+            {
+              const std::string included = Utilities::trim(line.substr(8));
+              if (input_file_type(included, "INCLUDE " + included) ==
+                  std::filesystem::file_type::regular)
+                check_includes(included, chain);
+            }
+        }
+      chain.pop_back();
+    }
+
+
     // A deal.II exception's "Additional information" as one line.
     std::string
     one_line(const std::exception &exception)
@@ -170,6 +211,11 @@ namespace clothsim
       if (!probe)
         throw InputError(file, "", "parameter file cannot be read");
     }
+    if (std::filesystem::path(file).extension() != ".json")
+      {
+        std::vector<std::string> chain;
+        check_includes(file, chain);
+      }
     try
       {
         prm.parse_input(file, "", /*skip_undefined=*/false, /*assert_mandatory=*/false);

@@ -5,6 +5,7 @@
 
 #include "io/input_error.h"
 #include "io/input_file.h"
+#include "mesh/child_process.h"
 
 #include <gmsh.h>
 #include <unistd.h>
@@ -180,21 +181,28 @@ namespace clothsim::mesh::detail
     if (have_msh && msh_type != fs::file_type::regular)
       throw InputError(msh_file, "", "not a regular file");
 
-    std::unique_ptr<GmshSession> session;
-    call_gmsh(msh_file, "gmsh cannot start", [&]() {
-      session = std::make_unique<GmshSession>();
-    });
-
-    if (!have_msh)
-      generate_msh(msh_file, geo_file);
-
+    // Everything once in a child process first (mesh/child_process.h): gmsh crashes on
+    // some malformed files. The child also generates a missing .msh; a crash after that
+    // leaves a .msh that must not stay.
+    const auto read = [&](const bool generate) {
+      std::unique_ptr<GmshSession> session;
+      call_gmsh(msh_file, "gmsh cannot start", [&]() {
+        session = std::make_unique<GmshSession>();
+      });
+      if (generate)
+        generate_msh(msh_file, geo_file);
+      RawMesh mesh;
+      call_gmsh(msh_file, "gmsh cannot read it", [&]() {
+        gmsh::open(msh_file);
+        mesh = read_model(msh_file);
+      });
+      return mesh;
+    };
     RawMesh raw;
     try
       {
-        call_gmsh(msh_file, "gmsh cannot read it", [&]() {
-          gmsh::open(msh_file);
-          raw = read_model(msh_file);
-        });
+        run_in_child_process(msh_file, "gmsh reading it", [&]() { read(!have_msh); });
+        raw = read(false);
       }
     catch (...)
       {
