@@ -18,6 +18,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #ifdef __linux__
@@ -128,6 +129,12 @@ namespace
     const rlimit no_core{0, 0}, memory{memory_limit, memory_limit};
     setrlimit(RLIMIT_CORE, &no_core);
     setrlimit(RLIMIT_AS, &memory);
+    // Open MPI's session directory per run: concurrent singletons sharing one race in
+    // creating and removing it (MPI_Init then fails, which is not clothsim's doing).
+    const std::string session = (scratch / ("mpi-" + n)).string();
+    mkdir(session.c_str(), 0700);
+    setenv("OMPI_MCA_orte_tmpdir_base", session.c_str(), 1);
+    setenv("TMPDIR", session.c_str(), 1);
     const std::string errors = (scratch / ("stderr-" + n + ".txt")).string();
     const std::string out    = (scratch / ("out-" + n)).string();
     const int         null   = open("/dev/null", O_RDWR);
@@ -337,7 +344,7 @@ main(int argc, char **argv)
   // SCRATCH_DIR/mutant-N/: mutant.prm and mesh.msh, or the parameter seed and mutant.msh.
   fs::create_directories(scratch);
   for (const auto &entry : fs::directory_iterator(scratch))
-    for (const std::string prefix : {"mutant-", "out-", "stderr-"})
+    for (const std::string prefix : {"mutant-", "out-", "stderr-", "mpi-"})
       if (entry.path().filename().string().rfind(prefix, 0) == 0)
         fs::remove_all(entry.path());
   for (std::size_t i = 0; i < mutants.size(); ++i)
@@ -365,6 +372,7 @@ main(int argc, char **argv)
         {
           fs::remove_all(directory);
           fs::remove_all(scratch / ("out-" + n));
+          fs::remove_all(scratch / ("mpi-" + n));
           fs::remove(errors);
           continue;
         }
