@@ -26,16 +26,6 @@ namespace clothsim::mesh
       return N / N.norm();
     }
 
-    // A rank-independent order of vertices: lexicographic in the reference coordinates.
-    bool
-    precedes(const Point<3> &a, const Point<3> &b)
-    {
-      for (unsigned int d = 0; d < 3; ++d)
-        if (a[d] != b[d])
-          return a[d] < b[d];
-      return false;
-    }
-
     // |T̄| = ½ √det Ā with Ā the metric of the edge basis X1 - X0, X2 - X0 (0 if
     // degenerate); the same formula as physics::membrane_rest_data.
     double

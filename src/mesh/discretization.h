@@ -40,6 +40,16 @@ namespace clothsim
 
   namespace mesh
   {
+    // A rank-independent order of vertices: lexicographic in the reference coordinates.
+    inline bool
+    precedes(const Point<3> &a, const Point<3> &b)
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        if (a[d] != b[d])
+          return a[d] < b[d];
+      return false;
+    }
+
     // How the mesh as read becomes the computational mesh.
     struct MeshSetup
     {

@@ -34,16 +34,6 @@ namespace clothsim
       return known.empty() ? "none" : known;
     }
 
-    // A rank-independent order of vertices: lexicographic in the reference coordinates.
-    bool
-    precedes(const Point<3> &a, const Point<3> &b)
-    {
-      for (unsigned int d = 0; d < 3; ++d)
-        if (a[d] != b[d])
-          return a[d] < b[d];
-      return false;
-    }
-
     // An expression that is inf or NaN at t = 0 would only surface as a failed first
     // step: evaluate `function` at each (component, vertex) of `samples` and throw an
     // InputError naming `entry`, the component and a vertex where it is not finite (the
@@ -61,7 +51,7 @@ namespace clothsim
                               const std::array<double, 5> &b) {
         if (a[0] != b[0])
           return a[0] < b[0];
-        return precedes(Point<3>(a[1], a[2], a[3]), Point<3>(b[1], b[2], b[3]));
+        return mesh::precedes(Point<3>(a[1], a[2], a[3]), Point<3>(b[1], b[2], b[3]));
       };
       for (const auto &[component, vertex] : samples)
         {
