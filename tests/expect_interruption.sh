@@ -23,7 +23,8 @@ for _ in $(seq 1200); do
 done
 target=$launched
 if [ "$ranks" -gt 1 ]; then
-  target=$(pgrep -P "$launched" | tail -n 1)
+  # mpirun's children are the ranks (/proc: no procps needed).
+  target=$(cat /proc/"$launched"/task/*/children | tr ' ' '\n' | grep . | tail -n 1)
 fi
 echo "sending SIG$signal to process $target after $rows rows of probes.csv"
 kill -s "$signal" "$target"
