@@ -12,7 +12,10 @@
 //    each term contributes and that the terms add up to the assembled model: a term too
 //    small to show in the sum cannot hide an error there. Then the mass-spring model with
 //    its spring damping (stiffness-proportional, β > 0), whose share of H d is reported
-//    too.
+//    too: assembled in the springs' loop (each spring's two parts distributed once), and
+//    each term alone with its own loop, which must add up to the assembled model. The
+//    damping force that the assembly returns beside the gradient (the dissipative
+//    terms' part, for the energy budget) equals the one of the damping's own loop.
 // 2. Term selection, "model only what a scene requires": params/default.prm has exactly
 //    membrane, gravity, kinetic, damping (and the energy columns membrane_energy,
 //    gravity_energy, damping_dissipated); params/drape.prm has bending; the mass-spring
@@ -38,6 +41,7 @@
 #include "physics/inertia.h"
 #include "physics/membrane_term.h"
 #include "physics/pressure_term.h"
+#include "physics/spring_terms.h"
 #include "scene/group_loads.h"
 #include "test_support.h"
 
@@ -203,6 +207,29 @@ namespace
     else if (name == "external loads")
       result->add(std::make_unique<physics::ExternalLoads>(resolve_group_loads(
         mesh, parameters.loads, model.get_constraints(), parameter_file, scene.groups)));
+    else if (name == "springs" || name == "spring damping")
+      {
+        // Springs of their own (as scene/cloth_model.cc makes them), each term with its
+        // own loop.
+        const MassSpringParameters &given = parameters.mass_spring;
+        const SpringConstants       constants{given.derived_constants,
+                                        material.stretch_stiffness,
+                                        material.poisson_ratio,
+                                        material.bending,
+                                        material.bending_rigidity,
+                                        given.bend_reference_angle,
+                                        given.structural_stiffness,
+                                        given.shear_stiffness + given.bend_stiffness};
+        VectorType                  prototype;
+        mesh.initialize_ghosted(prototype);
+        auto springs =
+          std::make_shared<SpringNetwork>(mesh.get_dof_handler(), constants, prototype);
+        if (name == "springs")
+          result->add(std::make_unique<physics::SpringTerm>(springs));
+        else
+          result->add(std::make_unique<physics::SpringDamping>(
+            springs, parameters.damping.stiffness_proportional));
+      }
     else
       AssertThrow(false, ExcMessage("no single-term model for '" + name + "'"));
     return result;
@@ -442,6 +469,93 @@ namespace
                           std::abs(all.curvature - without_damping.curvature) /
                             std::abs(all.curvature),
                           1e-2);
+
+    // The assembled model adds the spring damping in the springs' loop; each term alone
+    // (its own loop) must pass the same checks, and together give the assembled model.
+    const physics::Model &physics = model.get_physics();
+    for (unsigned int k = 0; k < names.size(); ++k)
+      if (names[k] == "spring damping")
+        passed &= check_below(pcout,
+                              "mass-spring: spring damping not assembled in the "
+                              "springs' loop",
+                              physics.assembled_by(k)->name() != "springs",
+                              0.5);
+    // (Gravity and inertia, checked alone in 1a, only join the sums here: on this sheet
+    // their grad Phi.d is too small against Phi for central differences.)
+    double sum_value = 0., sum_directional = 0., sum_curvature = 0.;
+    for (const std::string &name : names)
+      {
+        std::unique_ptr<physics::MembraneTerm> unused;
+        const auto term = single_term_model(*scene, "", name, unused);
+        term->prepare_step(previous_ghosted);
+        const Derivatives alone = derivatives(*term, model, terms, u, d, h);
+        pcout << "  " << name << " alone: Phi = " << alone.value
+              << " J, grad Phi.d = " << alone.directional << " J; gradient error "
+              << alone.gradient_error << ", Hessian error " << alone.hessian_error
+              << std::endl;
+        if (name == "springs" || name == "spring damping")
+          {
+            passed &=
+              check_below(pcout,
+                          "mass-spring: " + name + " alone: gradient error (relative)",
+                          alone.gradient_error,
+                          1e-6);
+            passed &= check_below(pcout,
+                                  "mass-spring: " + name +
+                                    " alone: exact Hessian error (relative)",
+                                  alone.hessian_error,
+                                  1e-5);
+          }
+        sum_value += alone.value;
+        sum_directional += alone.directional;
+        sum_curvature += alone.curvature;
+      }
+    passed &= check_relative_equal(pcout,
+                                   "mass-spring: sum over the terms alone against the "
+                                   "assembled Phi",
+                                   sum_value,
+                                   all.value,
+                                   1e-12);
+    passed &= check_relative_equal(pcout,
+                                   "mass-spring: sum over the terms alone against grad "
+                                   "Phi.d",
+                                   sum_directional,
+                                   all.directional,
+                                   1e-12);
+    passed &= check_relative_equal(pcout,
+                                   "mass-spring: sum over the terms alone against d.H d",
+                                   sum_curvature,
+                                   all.curvature,
+                                   1e-12);
+
+    // The damping force beside the gradient (explicit steps' energy budget) against
+    // the damping's own loop, and against its share of grad Phi.d.
+    VectorType u_ghosted, d_ghosted, gradient;
+    model.initialize_ghosted(u_ghosted);
+    model.initialize_ghosted(d_ghosted);
+    model.initialize_owned(gradient);
+    u_ghosted = u;
+    d_ghosted = d;
+    physics::RankVector beside, alone;
+    physics.assemble(u_ghosted, terms, &gradient, nullptr, &beside);
+    physics.dissipative_gradient(u_ghosted, terms, alone);
+    const double work_beside = physics.work(beside, d_ghosted);
+    const double work_alone  = physics.work(alone, d_ghosted);
+    pcout << "  damping force . d: beside the gradient " << work_beside
+          << " J, its own loop " << work_alone << " J, share of grad Phi.d "
+          << all.directional - without_damping.directional << " J" << std::endl;
+    passed &= check_relative_equal(pcout,
+                                   "mass-spring: damping force beside the gradient "
+                                   "against its own loop, . d",
+                                   work_beside,
+                                   work_alone,
+                                   1e-12);
+    passed &= check_relative_equal(pcout,
+                                   "mass-spring: damping force . d against the "
+                                   "damping's share of grad Phi.d",
+                                   work_beside,
+                                   all.directional - without_damping.directional,
+                                   1e-9);
     return passed;
   }
 

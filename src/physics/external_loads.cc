@@ -30,7 +30,8 @@ namespace clothsim::physics
                              const StepTerms  &step,
                              const AffineConstraints<double> &,
                              VectorType *gradient,
-                             MatrixType *) const
+                             MatrixType *,
+                             RankVector *) const
   {
     if (gradient != nullptr)
       {

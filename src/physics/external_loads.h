@@ -30,7 +30,8 @@ namespace clothsim::physics
                 const StepTerms                 &step,
                 const AffineConstraints<double> &constraints,
                 VectorType                      *gradient,
-                MatrixType                      *hessian) const override;
+                MatrixType                      *hessian,
+                RankVector                      *dissipative_gradient) const override;
 
     double
     energy(const VectorType &u, const VectorType &v) const override;

@@ -136,9 +136,15 @@ namespace clothsim
         springs = std::make_shared<SpringNetwork>(discretization.get_dof_handler(),
                                                   constants,
                                                   prototype);
-        model->add(std::make_unique<physics::SpringTerm>(springs));
+        // The springs' loop adds their damping too (one distribution per spring).
+        auto spring_term = std::make_unique<physics::SpringTerm>(springs);
+        std::unique_ptr<physics::SpringDamping> spring_damping;
         if (dynamic && beta > 0.)
-          model->add(std::make_unique<physics::SpringDamping>(springs, beta));
+          spring_damping =
+            std::make_unique<physics::SpringDamping>(springs, beta, spring_term.get());
+        model->add(std::move(spring_term));
+        if (spring_damping)
+          model->add(std::move(spring_damping));
       }
     if (!parameters.loads.point_forces.empty() || !parameters.loads.line_forces.empty())
       model->add(std::make_unique<physics::ExternalLoads>(

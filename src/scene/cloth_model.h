@@ -185,6 +185,26 @@ namespace clothsim
     {
       model->commit_step(u, u_owned);
     }
+    void
+    assemble_gradient(const VectorType    &u,
+                      const StepTerms     &step,
+                      VectorType          &gradient,
+                      physics::RankVector &dissipative_gradient) const override
+    {
+      model->assemble(u, step, &gradient, nullptr, &dissipative_gradient);
+    }
+    void
+    dissipative_gradient(const VectorType    &u,
+                         const StepTerms     &step,
+                         physics::RankVector &gradient) const override
+    {
+      model->dissipative_gradient(u, step, gradient);
+    }
+    double
+    work(const physics::RankVector &force, const VectorType &displacement) const override
+    {
+      return model->work(force, displacement);
+    }
     double
     dissipated_work(const VectorType &u,
                     const StepTerms  &step,
