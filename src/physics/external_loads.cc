@@ -45,7 +45,7 @@ namespace clothsim::physics
 
 
   double
-  ExternalLoads::energy(const VectorType &u, const VectorType &) const
+  ExternalLoads::energy(const VectorType &u, const VectorType &, RankVector *) const
   {
     return -local_work(u);
   }

@@ -34,7 +34,9 @@ namespace clothsim::physics
                 RankVector                      *dissipative_gradient) const override;
 
     double
-    energy(const VectorType &u, const VectorType &v) const override;
+    energy(const VectorType &u,
+           const VectorType &v,
+           RankVector       *damping_force) const override;
 
   private:
     // f_extᵀ u over the locally owned dofs (J).

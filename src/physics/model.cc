@@ -56,8 +56,16 @@ namespace clothsim::physics
     , n_relevant_dofs(discretization.relevant_dofs().n_elements())
     , timing_overhead(clock_overhead())
   {
+    VectorType prototype;
+    discretization.initialize_ghosted(prototype);
     for (const auto &element : discretization.elements())
-      rest.push_back(membrane_rest_data(element.reference));
+      {
+        rest.push_back(membrane_rest_data(element.reference));
+        if (directors)
+          angle_local_dofs.push_back({{local_index(prototype, element.angle_dofs[0]),
+                                       local_index(prototype, element.angle_dofs[1]),
+                                       local_index(prototype, element.angle_dofs[2])}});
+      }
   }
 
 
@@ -177,11 +185,12 @@ namespace clothsim::physics
       *hessian = 0.;
     if (dissipative_gradient != nullptr)
       dissipative_gradient->assign(n_relevant_dofs, 0.);
+    if (gradient != nullptr)
+      gradient_sums.start(u);
 
     const unsigned int                   n_local = directors ? 12 : 9;
     LocalVector                          g, g_dissipative;
     LocalMatrix                          H;
-    Vector<double>                       cell_vector(n_local);
     FullMatrix<double>                   cell_matrix(n_local, n_local);
     std::vector<types::global_dof_index> dof_vector(n_local);
     double                               value    = 0.;
@@ -227,9 +236,11 @@ namespace clothsim::physics
                   dof_vector.begin() + 9);
       if (gradient != nullptr)
         {
-          for (unsigned int i = 0; i < n_local; ++i)
-            cell_vector[i] = g[i];
-          constraints.distribute_local_to_global(cell_vector, dof_vector, *gradient);
+          for (unsigned int i = 0; i < 9; ++i)
+            gradient_sums.add(element.local_dofs[i], g[i]);
+          if (directors)
+            for (unsigned int i = 0; i < 3; ++i)
+              gradient_sums.add(angle_local_dofs[state.index][i], g[9 + i]);
         }
       if (hessian != nullptr)
         {
@@ -239,6 +250,9 @@ namespace clothsim::physics
           constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
         }
     });
+
+    if (gradient != nullptr)
+      gradient_sums.add_to(*gradient, constraints);
 
     for (unsigned int k = 0; k < global_terms.size(); ++k)
       {
@@ -364,18 +378,57 @@ namespace clothsim::physics
 
 
   Energies
-  Model::energies(const VectorType &u, const VectorType &v) const
+  Model::energies(const VectorType &u,
+                  const VectorType &v,
+                  RankVector       *damping_force) const
   {
-    std::vector<double>   local(all_terms.size(), 0.);
-    std::array<double, 9> v_e;
+    std::vector<double> local(all_terms.size(), 0.);
+    if (damping_force != nullptr)
+      damping_force->assign(n_relevant_dofs, 0.);
+    const bool element_forces =
+      damping_force != nullptr &&
+      std::any_of(element_terms.begin(), element_terms.end(), [](const auto &term) {
+        return term->kind() == TermKind::dissipative;
+      });
+    // The damping force is the dissipative terms' gradient with w_d = 1, u_n = u - v.
+    StepTerms forces;
+    forces.damping_weight = 1.;
+    std::array<double, 9> v_e, centre_e;
+    LocalVector           g;
     const auto           &elements = discretization.elements();
     for_each_element(u, nullptr, nullptr, [&](const ElementState &state) {
-      discretization.gather(v, elements[state.index], v_e);
+      const auto &element = elements[state.index];
+      discretization.gather(v, element, v_e);
       for (unsigned int k = 0; k < element_terms.size(); ++k)
         local[k] += element_terms[k]->energy(state, v_e);
+      if (element_forces)
+        {
+          for (unsigned int i = 0; i < 9; ++i)
+            centre_e[i] = state.u[i] - v_e[i];
+          const ElementState moving{state.index,
+                                    state.reference,
+                                    state.rest,
+                                    state.x,
+                                    state.u,
+                                    state.predictor,
+                                    centre_e,
+                                    state.psi};
+          g.fill(0.);
+          double unused = 0.;
+          for (const auto &term : element_terms)
+            if (term->kind() == TermKind::dissipative)
+              term->add_to_step(moving, forces, unused, &g, nullptr);
+          for (unsigned int i = 0; i < 9; ++i)
+            (*damping_force)[element.local_dofs[i]] += g[i];
+        }
     });
+    // A hosted term's force comes with its host's.
     for (unsigned int k = 0; k < global_terms.size(); ++k)
-      local[element_terms.size() + k] += global_terms[k]->energy(u, v);
+      {
+        const unsigned int term = element_terms.size() + k;
+        local[term] += global_terms[k]->energy(
+          u, v, assemblers[term] == all_terms[term] ? damping_force : nullptr);
+      }
 
     Energies result;
     result.terms = local;

@@ -7,6 +7,7 @@
 // steppers (area ratios) are evaluated here too.
 
 #include "mesh/discretization.h"
+#include "mesh/local_sums.h"
 #include "physics/term.h"
 
 #include <memory>
@@ -100,9 +101,14 @@ namespace clothsim::physics
     void
     elastic_forces(const VectorType &u, VectorType &forces) const;
 
-    // Energies at displacement u and velocity v (ghosted).
+    // Energies at displacement u and velocity v (ghosted). If non-null,
+    // `damping_force` gets the state's damping force D(u) v from the same loops (the
+    // dissipative terms' gradient with w_d = 1 and u_n = u - v, K_n as last prepared;
+    // rank-local, term.h).
     Energies
-    energies(const VectorType &u, const VectorType &v) const;
+    energies(const VectorType &u,
+             const VectorType &v,
+             RankVector       *damping_force = nullptr) const;
 
     void
     prepare_step(const VectorType &u_n);
@@ -153,8 +159,11 @@ namespace clothsim::physics
     bool                                      directors = false;
     unsigned int                              n_relevant_dofs; // of ghosted vectors
     std::vector<MembraneRestData>             rest; // per element, for strain and areas
-    mutable std::vector<double>               seconds; // per term, see term_seconds()
-    const double                              timing_overhead; // s per sample
+    // With directors: per element, its angle dofs' local indices in ghosted vectors.
+    std::vector<std::array<int, 3>> angle_local_dofs;
+    mutable mesh::LocalSums         gradient_sums;   // the cell loop's gradient
+    mutable std::vector<double>     seconds;         // per term, see term_seconds()
+    const double                    timing_overhead; // s per sample
   };
 
   // Output fields of an element term (membrane stress, curvature change, ...).

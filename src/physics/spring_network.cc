@@ -253,6 +253,36 @@ namespace clothsim
 
 
   double
+  SpringNetwork::add_damping_force(const VectorType    &v,
+                                   const double         damping_coefficient,
+                                   std::vector<double> &damping_force,
+                                   const VectorType    *u) const
+  {
+    Assert(damping_blocks.size() == entries.size(), ExcInternalError());
+    AssertDimension(damping_force.size(), n_relevant_dofs);
+    const double *v_local = ghosted_values(v, n_relevant_dofs);
+    double        value   = 0.;
+    for (unsigned int s = 0; s < entries.size(); ++s)
+      {
+        const Entry &entry = entries[s];
+        if (u != nullptr)
+          value += physics::spring_energy(entry.spring, current_positions(entry, *u));
+        // c K_n v = c (-B r, B r) with r = v_1 - v_0.
+        Tensor<1, 3> r;
+        for (unsigned int d = 0; d < 3; ++d)
+          r[d] = v_local[entry.local_dofs[3 + d]] - v_local[entry.local_dofs[d]];
+        const Tensor<1, 3> force = damping_coefficient * (damping_blocks[s] * r);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            damping_force[entry.local_dofs[d]] -= force[d];
+            damping_force[entry.local_dofs[3 + d]] += force[d];
+          }
+      }
+    return value;
+  }
+
+
+  double
   SpringNetwork::add_to_step(const VectorType                &u,
                              const StepParts                 &parts,
                              const AffineConstraints<double> &constraints,
@@ -274,11 +304,12 @@ namespace clothsim
     const double *previous_local =
       damping ? ghosted_values(*parts.previous, n_relevant_dofs) : nullptr;
     std::vector<types::global_dof_index> dofs(6);
-    Vector<double>                       cell_vector(6);
     FullMatrix<double>                   cell_matrix(6, 6);
     physics::SpringVector                g;
     physics::SpringMatrix                H;
     double                               value = 0.;
+    if (gradient != nullptr)
+      gradient_sums.start(u);
     for (unsigned int s = 0; s < entries.size(); ++s)
       {
         const Entry &entry = entries[s];
@@ -333,21 +364,20 @@ namespace clothsim
                   }
           }
 
-        std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
         if (gradient != nullptr)
-          {
-            for (unsigned int i = 0; i < 6; ++i)
-              cell_vector[i] = g[i];
-            constraints.distribute_local_to_global(cell_vector, dofs, *gradient);
-          }
+          for (unsigned int i = 0; i < 6; ++i)
+            gradient_sums.add(entry.local_dofs[i], g[i]);
         if (hessian != nullptr)
           {
+            std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
             for (unsigned int i = 0; i < 6; ++i)
               for (unsigned int j = 0; j < 6; ++j)
                 cell_matrix(i, j) = H[i][j];
             constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
           }
       }
+    if (gradient != nullptr)
+      gradient_sums.add_to(*gradient, constraints);
     return value;
   }
 

@@ -23,6 +23,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include "mesh/local_sums.h"
 #include "physics/mass_spring.h"
 
 #include <array>
@@ -96,6 +97,16 @@ namespace clothsim
     // The springs' energy on this rank at displacement u (ghosted), J.
     double
     energy(const VectorType &u) const;
+
+    // Adds the stiffness-proportional damping force c K_n v at the velocity v (ghosted;
+    // K_n from prepare_damping) to `damping_force` (this rank's relevant dofs in the
+    // order of ghosted vectors, physics/term.h). If `u` is non-null, the same loop
+    // returns the springs' energy at u (else 0).
+    double
+    add_damping_force(const VectorType    &v,
+                      const double         damping_coefficient,
+                      std::vector<double> &damping_force,
+                      const VectorType    *u = nullptr) const;
 
     // What add_to_step adds for each spring.
     struct StepParts
@@ -175,7 +186,8 @@ namespace clothsim
     // Per entry, if β > 0: the block B of the projected Hessian at u_n,
     // K_n = [[B, -B], [-B, B]] (physics/mass_spring.h).
     std::vector<Tensor<2, 3>> damping_blocks;
-    std::vector<unsigned int> colors; // per entry (structural)
+    mutable mesh::LocalSums   gradient_sums; // add_to_step's gradient
+    std::vector<unsigned int> colors;        // per entry (structural)
     unsigned int              color_count = 0;
   };
 } // namespace clothsim

@@ -34,8 +34,15 @@ namespace clothsim::physics
 
 
   double
-  SpringTerm::energy(const VectorType &u, const VectorType &) const
+  SpringTerm::energy(const VectorType &u,
+                     const VectorType &v,
+                     RankVector       *damping_force) const
   {
+    if (damping_force != nullptr && damping != nullptr)
+      return network->add_damping_force(v,
+                                        damping->stiffness_proportional(),
+                                        *damping_force,
+                                        &u);
     return network->energy(u);
   }
 
@@ -110,6 +117,17 @@ namespace clothsim::physics
         parts.previous            = step.previous;
       }
     return parts;
+  }
+
+
+  double
+  SpringDamping::energy(const VectorType &,
+                        const VectorType &v,
+                        RankVector       *damping_force) const
+  {
+    if (damping_force != nullptr)
+      network->add_damping_force(v, beta, *damping_force);
+    return 0.;
   }
 
 

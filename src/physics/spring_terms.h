@@ -36,8 +36,11 @@ namespace clothsim::physics
                 MatrixType                      *hessian,
                 RankVector                      *dissipative_gradient) const override;
 
+    // With `damping_force`: also the hosted damping's force, in the same loop.
     double
-    energy(const VectorType &u, const VectorType &v) const override;
+    energy(const VectorType &u,
+           const VectorType &v,
+           RankVector       *damping_force) const override;
 
     // spring_strain: per triangle, the strain (ℓ - L)/L of its edge with the largest
     // |strain| (the structural springs' strain).
@@ -69,6 +72,13 @@ namespace clothsim::physics
       return springs;
     }
 
+    // β, s.
+    double
+    stiffness_proportional() const
+    {
+      return beta;
+    }
+
     // The spring damping's part of a step: c = w_d β (0 without damping).
     SpringNetwork::StepParts
     step_parts(const StepTerms &step) const;
@@ -95,11 +105,11 @@ namespace clothsim::physics
                 MatrixType                      *hessian,
                 RankVector                      *dissipative_gradient) const override;
 
+    // No energy; with `damping_force`, its force β K_n v.
     double
-    energy(const VectorType &, const VectorType &) const override
-    {
-      return 0.;
-    }
+    energy(const VectorType &u,
+           const VectorType &v,
+           RankVector       *damping_force) const override;
 
   private:
     std::shared_ptr<SpringNetwork> network;

@@ -194,8 +194,11 @@ namespace clothsim::physics
       return nullptr;
     }
 
-    // This rank's part of the energy at (u, v) (ghosted).
+    // This rank's part of the energy at (u, v) (ghosted). If non-null, `damping_force`
+    // (sized to the relevant dofs) also gets the damping force at (u, v) of the
+    // dissipative terms this call covers (the term itself if dissipative, and any it
+    // hosts): their gradient with w_d = 1 and u_n = u - v, K_n as last prepared.
     virtual double
-    energy(const VectorType &u, const VectorType &v) const = 0;
+    energy(const VectorType &u, const VectorType &v, RankVector *damping_force) const = 0;
   };
 } // namespace clothsim::physics

@@ -242,8 +242,24 @@ namespace clothsim
                        const VectorType &v,
                        const double      dissipated) const
   {
-    const physics::Energies        energies = model->energies(u, v);
-    const std::vector<std::string> columns  = energy_columns();
+    return report(model->energies(u, v), dissipated);
+  }
+
+
+  EnergyReport
+  ClothModel::energies(const VectorType    &u,
+                       const VectorType    &v,
+                       const double         dissipated,
+                       physics::RankVector &damping_force) const
+  {
+    return report(model->energies(u, v, &damping_force), dissipated);
+  }
+
+
+  EnergyReport
+  ClothModel::report(const physics::Energies &energies, const double dissipated) const
+  {
+    const std::vector<std::string> columns = energy_columns();
     EnergyReport                   report{energies.kinetic,
                         energies.elastic,
                         energies.potential,

@@ -193,13 +193,6 @@ namespace clothsim
     {
       model->assemble(u, step, &gradient, nullptr, &dissipative_gradient);
     }
-    void
-    dissipative_gradient(const VectorType    &u,
-                         const StepTerms     &step,
-                         physics::RankVector &gradient) const override
-    {
-      model->dissipative_gradient(u, step, gradient);
-    }
     double
     work(const physics::RankVector &force, const VectorType &displacement) const override
     {
@@ -237,6 +230,11 @@ namespace clothsim
     energies(const VectorType &u,
              const VectorType &v,
              const double      dissipated) const override;
+    EnergyReport
+    energies(const VectorType    &u,
+             const VectorType    &v,
+             const double         dissipated,
+             physics::RankVector &damping_force) const override;
     io::FrameData
     output_fields(const VectorType &u, const VectorType &v) const override;
 
@@ -244,6 +242,11 @@ namespace clothsim
     // Chooses and adds the terms the scene needs.
     void
     add_terms(const std::string &parameter_file, const mesh::MeshGroups &groups);
+
+    // The report of the model's energies, with the work `dissipated` in the dissipative
+    // terms' column.
+    EnergyReport
+    report(const physics::Energies &energies, const double dissipated) const;
 
     const Parameters                   &parameters;
     mesh::Discretization                discretization;

@@ -181,16 +181,6 @@ namespace clothsim
   }
 
 
-  void
-  ExplicitStepper::evaluate_damping_force(const VectorType &u, const VectorType &v)
-  {
-    TimerOutput::Scope scope(timer, "energy budget");
-    const StepTerms    terms = damping_terms(u, v);
-    work_ghosted             = u;
-    model.dissipative_gradient(work_ghosted, terms, damping_force);
-  }
-
-
   RunSummary
   ExplicitStepper::run()
   {
@@ -237,7 +227,7 @@ namespace clothsim
     StepTimes  step_times(timer);
     const bool dissipation = model.has_dissipation();
     if (verlet)
-      acceleration(u, v, a);
+      acceleration(u, v, a, dissipation ? &damping_force : nullptr);
     double       time   = 0.;
     unsigned int step   = 0;
     bool         warned = dt > safe_fraction * critical.estimate;
@@ -248,13 +238,12 @@ namespace clothsim
         const double time_new = std::min({time + dt, next_output, end});
         const double h        = time_new - time;
         u_old                 = u;
-        // The energy budget needs the damping force at the step's start, D(u_n) v_n.
-        // Symplectic Euler's force evaluation gives it; Verlet's last one saw v_{n-1/2}
-        // (v_n came after it), so there it takes the damping alone, distributing nothing.
+        // The energy budget needs the damping force at the step's start, D(u_n) v_n:
+        // symplectic Euler's force evaluation gives it; Verlet's last one saw v_{n-1/2},
+        // so there the energies of (u_n, v_n) gave it (below; at the start, the first
+        // force evaluation).
         if (verlet)
           {
-            if (dissipation)
-              evaluate_damping_force(u, v);
             v.add(0.5 * h, a); // v_{n+1/2}
             u.add(h, v);
           }
@@ -292,10 +281,13 @@ namespace clothsim
         time = time_new;
         ++step;
 
-        u_ghosted                   = u;
-        v_ghosted                   = v;
-        const EnergyReport energies = current_energies();
-        const bool         output_now =
+        u_ghosted = u;
+        v_ghosted = v;
+        // Verlet: with D(u_{n+1}) v_{n+1} for the next step (K was last prepared at
+        // u_{n+1}).
+        const EnergyReport energies =
+          verlet && dissipation ? current_energies(damping_force) : current_energies();
+        const bool output_now =
           interval == 0. || time >= next_output - epsilon || time >= end - epsilon;
         // Blow-up: a non-finite energy every step; a collapsed or hundredfold grown
         // triangle every 10 steps, at output times, and whenever K + W has more than

@@ -90,11 +90,6 @@ namespace clothsim
                  VectorType          &a,
                  physics::RankVector *damping_force = nullptr);
 
-    // The damping force D(u) v alone (u, v owned; rank-local) into `damping_force`,
-    // with the stiffness-proportional part's K as last prepared.
-    void
-    evaluate_damping_force(const VectorType &u, const VectorType &v);
-
     // The damping force of the state (u, v) (owned) as a step's damping term: weight 1,
     // centre u - v. Sets `centre` and `centre_ghosted`.
     StepTerms

@@ -83,12 +83,6 @@ namespace clothsim
                       const StepTerms     &step,
                       VectorType          &gradient,
                       physics::RankVector &dissipative_gradient) const = 0;
-    // The dissipative terms' part of the gradient alone at u (ghosted), rank-local: a
-    // loop over them only, distributing nothing.
-    virtual void
-    dissipative_gradient(const VectorType    &u,
-                         const StepTerms     &step,
-                         physics::RankVector &gradient) const = 0;
     // A rank-local vector dotted with a ghosted one, summed over ranks: the work of a
     // force over a displacement, J.
     virtual double
@@ -123,6 +117,14 @@ namespace clothsim
     // terms so far, J, reported in their column.
     virtual EnergyReport
     energies(const VectorType &u, const VectorType &v, const double dissipated) const = 0;
+    // The same and, from the same loops, the state's damping force D(u) v (the
+    // dissipative terms' gradient with w_d = 1 and u_n = u - v, K_n as last prepared;
+    // rank-local, physics/term.h).
+    virtual EnergyReport
+    energies(const VectorType    &u,
+             const VectorType    &v,
+             const double         dissipated,
+             physics::RankVector &damping_force) const = 0;
 
     // The fields of an output frame at (u, v), ghosted.
     virtual io::FrameData

@@ -125,6 +125,12 @@ namespace clothsim
     {
       return model.energies(u_ghosted, v_ghosted, dissipated);
     }
+    // The same and the state's damping force (ModelInterface::energies).
+    EnergyReport
+    current_energies(physics::RankVector &damping_force) const
+    {
+      return model.energies(u_ghosted, v_ghosted, dissipated, damping_force);
+    }
 
     // The statistics row of an accepted step with the energies of its state.
     void
