@@ -167,8 +167,14 @@ namespace clothsim
       pcout
         << "assembly time per term (element terms estimated from every 64th triangle):";
       for (unsigned int k = 0; k < physics.terms().size(); ++k)
-        pcout << (k == 0 ? " " : ", ") << physics.terms()[k]->name() << " "
-              << physics.term_seconds()[k] << " s";
+        {
+          const physics::Term *term = physics.terms()[k];
+          pcout << (k == 0 ? " " : ", ") << term->name() << " ";
+          if (physics.assembled_by(k) != term)
+            pcout << "(in the " << physics.assembled_by(k)->name() << " loop)";
+          else
+            pcout << physics.term_seconds()[k] << " s";
+        }
       pcout << std::endl;
       return outcome;
     }

@@ -30,7 +30,8 @@ namespace clothsim::physics
                              const StepTerms  &step,
                              const AffineConstraints<double> &,
                              VectorType *gradient,
-                             MatrixType *) const
+                             MatrixType *,
+                             RankVector *) const
   {
     if (gradient != nullptr)
       {
@@ -44,7 +45,7 @@ namespace clothsim::physics
 
 
   double
-  ExternalLoads::energy(const VectorType &u, const VectorType &) const
+  ExternalLoads::energy(const VectorType &u, const VectorType &, RankVector *) const
   {
     return -local_work(u);
   }

@@ -30,10 +30,13 @@ namespace clothsim::physics
                 const StepTerms                 &step,
                 const AffineConstraints<double> &constraints,
                 VectorType                      *gradient,
-                MatrixType                      *hessian) const override;
+                MatrixType                      *hessian,
+                RankVector                      *dissipative_gradient) const override;
 
     double
-    energy(const VectorType &u, const VectorType &v) const override;
+    energy(const VectorType &u,
+           const VectorType &v,
+           RankVector       *damping_force) const override;
 
   private:
     // f_extᵀ u over the locally owned dofs (J).

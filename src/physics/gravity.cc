@@ -16,15 +16,21 @@ namespace clothsim::physics
                            LocalVector        *gradient,
                            LocalMatrix *) const
   {
+    // Summed locally and added once (`value` and `gradient` may alias as far as the
+    // compiler knows: per-entry updates of both cost as much as the rest of the term).
     const double vertex_mass = areal_density * element.rest.area / 3.;
+    double       load[3];
+    for (unsigned int d = 0; d < 3; ++d)
+      load[d] = step.load_factor * vertex_mass * gravity[d];
+    double work = 0.;
     for (unsigned int v = 0; v < 3; ++v)
       for (unsigned int d = 0; d < 3; ++d)
-        {
-          const double load = step.load_factor * vertex_mass * gravity[d];
-          value -= load * element.u[3 * v + d];
-          if (gradient != nullptr)
-            (*gradient)[3 * v + d] -= load;
-        }
+        work += load[d] * element.u[3 * v + d];
+    value -= work;
+    if (gradient != nullptr)
+      for (unsigned int v = 0; v < 3; ++v)
+        for (unsigned int d = 0; d < 3; ++d)
+          (*gradient)[3 * v + d] -= load[d];
   }
 
 

@@ -19,23 +19,40 @@ namespace clothsim::physics
                      LocalVector                 *gradient,
                      LocalMatrix                 *hessian)
   {
-    for (unsigned int a = 0; a < 3; ++a)
-      for (unsigned int b = 0; b < 3; ++b)
-        {
-          const double m_ab = mass_entry(lumped, vertex_mass, a, b);
-          if (m_ab == 0.)
-            continue;
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              const unsigned int i = 3 * a + d, j = 3 * b + d;
-              const double       r_i = u[i] - centre[i], r_j = u[j] - centre[j];
-              value += 0.5 * m_ab * (weight * r_i * r_j);
-              if (gradient != nullptr)
-                (*gradient)[i] += m_ab * (weight * r_j);
-              if (hessian != nullptr)
-                (*hessian)[i][j] += weight * m_ab;
-            }
-        }
+    // r = u - c; the force weight M r and ½ rᵀ (weight M r), summed locally and added
+    // once (a lumped M is diagonal).
+    std::array<double, 9> r, force;
+    for (unsigned int i = 0; i < 9; ++i)
+      r[i] = u[i] - centre[i];
+    if (lumped)
+      for (unsigned int i = 0; i < 9; ++i)
+        force[i] = vertex_mass * (weight * r[i]);
+    else
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            double sum = 0.;
+            for (unsigned int b = 0; b < 3; ++b)
+              sum += mass_entry(false, vertex_mass, a, b) * (weight * r[3 * b + d]);
+            force[3 * a + d] = sum;
+          }
+    double quadratic = 0.;
+    for (unsigned int i = 0; i < 9; ++i)
+      quadratic += r[i] * force[i];
+    value += 0.5 * quadratic;
+    if (gradient != nullptr)
+      for (unsigned int i = 0; i < 9; ++i)
+        (*gradient)[i] += force[i];
+    if (hessian != nullptr)
+      for (unsigned int a = 0; a < 3; ++a)
+        for (unsigned int b = 0; b < 3; ++b)
+          {
+            const double m_ab = mass_entry(lumped, vertex_mass, a, b);
+            if (m_ab == 0.)
+              continue;
+            for (unsigned int d = 0; d < 3; ++d)
+              (*hessian)[3 * a + d][3 * b + d] += weight * m_ab;
+          }
   }
 
 
@@ -66,9 +83,13 @@ namespace clothsim::physics
     double       kinetic     = 0.;
     for (unsigned int a = 0; a < 3; ++a)
       for (unsigned int b = 0; b < 3; ++b)
-        for (unsigned int d = 0; d < 3; ++d)
-          kinetic += 0.5 * mass_entry(lumped_mass, vertex_mass, a, b) * v_e[3 * a + d] *
-                     v_e[3 * b + d];
+        {
+          const double m_ab = mass_entry(lumped_mass, vertex_mass, a, b);
+          if (m_ab == 0.)
+            continue;
+          for (unsigned int d = 0; d < 3; ++d)
+            kinetic += 0.5 * m_ab * v_e[3 * a + d] * v_e[3 * b + d];
+        }
     return kinetic;
   }
 } // namespace clothsim::physics

@@ -1,5 +1,7 @@
 #include "physics/model.h"
 
+#include "mesh/ghosted_values.h"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -51,10 +53,19 @@ namespace clothsim::physics
     : discretization(discretization)
     , constraints(constraints)
     , directors(discretization.has_directors())
+    , n_relevant_dofs(discretization.relevant_dofs().n_elements())
     , timing_overhead(clock_overhead())
   {
+    VectorType prototype;
+    discretization.initialize_ghosted(prototype);
     for (const auto &element : discretization.elements())
-      rest.push_back(membrane_rest_data(element.reference));
+      {
+        rest.push_back(membrane_rest_data(element.reference));
+        if (directors)
+          angle_local_dofs.push_back({{local_index(prototype, element.angle_dofs[0]),
+                                       local_index(prototype, element.angle_dofs[1]),
+                                       local_index(prototype, element.angle_dofs[2])}});
+      }
   }
 
 
@@ -64,6 +75,7 @@ namespace clothsim::physics
     AssertThrow(global_terms.empty(),
                 ExcMessage("element terms come before the other terms"));
     all_terms.push_back(term.get());
+    assemblers.push_back(term.get());
     seconds.push_back(0.);
     element_terms.push_back(std::move(term));
   }
@@ -72,9 +84,23 @@ namespace clothsim::physics
   void
   Model::add(std::unique_ptr<GlobalTerm> term)
   {
+    // Left to its host if the host is in the model already.
+    const Term *host = term->host();
+    if (host == nullptr ||
+        std::find(all_terms.begin(), all_terms.end(), host) == all_terms.end())
+      host = term.get();
     all_terms.push_back(term.get());
+    assemblers.push_back(host);
     seconds.push_back(0.);
     global_terms.push_back(std::move(term));
+  }
+
+
+  const Term *
+  Model::assembled_by(const unsigned int k) const
+  {
+    AssertIndexRange(k, assemblers.size());
+    return assemblers[k];
   }
 
 
@@ -144,7 +170,8 @@ namespace clothsim::physics
   Model::assemble(const VectorType &u,
                   const StepTerms  &step,
                   VectorType       *gradient,
-                  MatrixType       *hessian) const
+                  MatrixType       *hessian,
+                  RankVector       *dissipative_gradient) const
   {
     const VectorType *predictor = step.inertia_weight > 0. ? step.predictor : nullptr;
     const VectorType *previous =
@@ -156,11 +183,14 @@ namespace clothsim::physics
       *gradient = 0.;
     if (hessian != nullptr)
       *hessian = 0.;
+    if (dissipative_gradient != nullptr)
+      dissipative_gradient->assign(n_relevant_dofs, 0.);
+    if (gradient != nullptr)
+      gradient_sums.start(u);
 
     const unsigned int                   n_local = directors ? 12 : 9;
-    LocalVector                          g;
+    LocalVector                          g, g_dissipative;
     LocalMatrix                          H;
-    Vector<double>                       cell_vector(n_local);
     FullMatrix<double>                   cell_matrix(n_local, n_local);
     std::vector<types::global_dof_index> dof_vector(n_local);
     double                               value    = 0.;
@@ -170,21 +200,35 @@ namespace clothsim::physics
       if (hessian != nullptr)
         for (auto &row : H)
           row.fill(0.);
-      const bool timed = state.index % timing_stride == 0;
+      const auto &element = elements[state.index];
+      const bool  timed   = state.index % timing_stride == 0;
       for (unsigned int k = 0; k < element_terms.size(); ++k)
         {
           const Clock::time_point start = timed ? Clock::now() : Clock::time_point();
-          element_terms[k]->add_to_step(state,
-                                        step,
-                                        value,
-                                        gradient != nullptr ? &g : nullptr,
-                                        hessian != nullptr ? &H : nullptr);
+          if (dissipative_gradient != nullptr &&
+              element_terms[k]->kind() == TermKind::dissipative)
+            {
+              // Its part kept apart too (on the displacement dofs: damping has no
+              // angle part).
+              g_dissipative.fill(0.);
+              element_terms[k]->add_to_step(
+                state, step, value, &g_dissipative, hessian != nullptr ? &H : nullptr);
+              for (unsigned int i = 0; i < n_local; ++i)
+                g[i] += g_dissipative[i];
+              for (unsigned int i = 0; i < 9; ++i)
+                (*dissipative_gradient)[element.local_dofs[i]] += g_dissipative[i];
+            }
+          else
+            element_terms[k]->add_to_step(state,
+                                          step,
+                                          value,
+                                          gradient != nullptr ? &g : nullptr,
+                                          hessian != nullptr ? &H : nullptr);
           if (timed)
             seconds[k] +=
               timing_stride * std::max(seconds_since(start) - timing_overhead, 0.);
         }
 
-      const auto &element = elements[state.index];
       std::copy(element.dofs.begin(), element.dofs.end(), dof_vector.begin());
       if (directors)
         std::copy(element.angle_dofs.begin(),
@@ -192,9 +236,11 @@ namespace clothsim::physics
                   dof_vector.begin() + 9);
       if (gradient != nullptr)
         {
-          for (unsigned int i = 0; i < n_local; ++i)
-            cell_vector[i] = g[i];
-          constraints.distribute_local_to_global(cell_vector, dof_vector, *gradient);
+          for (unsigned int i = 0; i < 9; ++i)
+            gradient_sums.add(element.local_dofs[i], g[i]);
+          if (directors)
+            for (unsigned int i = 0; i < 3; ++i)
+              gradient_sums.add(angle_local_dofs[state.index][i], g[9 + i]);
         }
       if (hessian != nullptr)
         {
@@ -205,11 +251,18 @@ namespace clothsim::physics
         }
     });
 
+    if (gradient != nullptr)
+      gradient_sums.add_to(*gradient, constraints);
+
     for (unsigned int k = 0; k < global_terms.size(); ++k)
       {
+        const unsigned int term = element_terms.size() + k;
+        if (assemblers[term] != all_terms[term])
+          continue; // its host adds it
         const Clock::time_point start = Clock::now();
-        value += global_terms[k]->add_to_step(u, step, constraints, gradient, hessian);
-        seconds[element_terms.size() + k] += seconds_since(start);
+        value += global_terms[k]->add_to_step(
+          u, step, constraints, gradient, hessian, dissipative_gradient);
+        seconds[term] += seconds_since(start);
       }
 
     if (gradient != nullptr)
@@ -232,50 +285,59 @@ namespace clothsim::physics
   }
 
 
+  void
+  Model::dissipative_gradient(const VectorType &u,
+                              const StepTerms  &step,
+                              RankVector       &gradient) const
+  {
+    gradient.assign(n_relevant_dofs, 0.);
+    const bool element_dissipation =
+      std::any_of(element_terms.begin(), element_terms.end(), [](const auto &term) {
+        return term->kind() == TermKind::dissipative;
+      });
+    if (element_dissipation)
+      {
+        LocalVector g;
+        const auto &elements = discretization.elements();
+        for_each_element(u, nullptr, step.previous, [&](const ElementState &state) {
+          g.fill(0.);
+          double value = 0.;
+          for (const auto &term : element_terms)
+            if (term->kind() == TermKind::dissipative)
+              term->add_to_step(state, step, value, &g, nullptr);
+          const auto &element = elements[state.index];
+          for (unsigned int i = 0; i < 9; ++i)
+            gradient[element.local_dofs[i]] += g[i];
+        });
+      }
+    // Each term alone (a host's other parts are not wanted here).
+    const AffineConstraints<double> none;
+    for (const auto &term : global_terms)
+      if (term->kind() == TermKind::dissipative)
+        term->add_to_step(u, step, none, nullptr, nullptr, &gradient);
+  }
+
+
+  double
+  Model::work(const RankVector &force, const VectorType &ghosted) const
+  {
+    AssertDimension(force.size(), n_relevant_dofs);
+    const double *values = ghosted_values(ghosted, n_relevant_dofs);
+    double        local  = 0.;
+    for (unsigned int i = 0; i < n_relevant_dofs; ++i)
+      local += force[i] * values[i];
+    return Utilities::MPI::sum(local, discretization.get_communicator());
+  }
+
+
   double
   Model::dissipated_work(const VectorType &u,
                          const StepTerms  &step,
                          const VectorType &increment) const
   {
-    double                local_work = 0.;
-    LocalVector           g;
-    std::array<double, 9> increment_e;
-    const auto           &elements = discretization.elements();
-    for_each_element(u, nullptr, step.previous, [&](const ElementState &state) {
-      g.fill(0.);
-      bool dissipative = false;
-      for (const auto &term : element_terms)
-        if (term->kind() == TermKind::dissipative)
-          {
-            double value = 0.;
-            term->add_to_step(state, step, value, &g, nullptr);
-            dissipative = true;
-          }
-      if (!dissipative)
-        return;
-      discretization.gather(increment, elements[state.index], increment_e);
-      for (unsigned int i = 0; i < 9; ++i)
-        local_work += g[i] * increment_e[i];
-    });
-    double work = Utilities::MPI::sum(local_work, discretization.get_communicator());
-
-    const AffineConstraints<double> none;
-    VectorType                      gradient, increment_owned;
-    for (const auto &term : global_terms)
-      if (term->kind() == TermKind::dissipative)
-        {
-          if (gradient.size() == 0)
-            {
-              discretization.initialize_owned(gradient);
-              discretization.initialize_owned(increment_owned);
-              increment_owned = increment;
-            }
-          gradient = 0.;
-          term->add_to_step(u, step, none, &gradient, nullptr);
-          gradient.compress(VectorOperation::add);
-          work += gradient * increment_owned;
-        }
-    return work;
+    RankVector gradient;
+    dissipative_gradient(u, step, gradient);
+    return work(gradient, increment);
   }
 
 
@@ -310,24 +372,63 @@ namespace clothsim::physics
     const AffineConstraints<double> none;
     for (const auto &term : global_terms)
       if (term->kind() == TermKind::elastic)
-        term->add_to_step(u, step, none, &forces, nullptr);
+        term->add_to_step(u, step, none, &forces, nullptr, nullptr);
     forces.compress(VectorOperation::add);
   }
 
 
   Energies
-  Model::energies(const VectorType &u, const VectorType &v) const
+  Model::energies(const VectorType &u,
+                  const VectorType &v,
+                  RankVector       *damping_force) const
   {
-    std::vector<double>   local(all_terms.size(), 0.);
-    std::array<double, 9> v_e;
+    std::vector<double> local(all_terms.size(), 0.);
+    if (damping_force != nullptr)
+      damping_force->assign(n_relevant_dofs, 0.);
+    const bool element_forces =
+      damping_force != nullptr &&
+      std::any_of(element_terms.begin(), element_terms.end(), [](const auto &term) {
+        return term->kind() == TermKind::dissipative;
+      });
+    // The damping force is the dissipative terms' gradient with w_d = 1, u_n = u - v.
+    StepTerms forces;
+    forces.damping_weight = 1.;
+    std::array<double, 9> v_e, centre_e;
+    LocalVector           g;
     const auto           &elements = discretization.elements();
     for_each_element(u, nullptr, nullptr, [&](const ElementState &state) {
-      discretization.gather(v, elements[state.index], v_e);
+      const auto &element = elements[state.index];
+      discretization.gather(v, element, v_e);
       for (unsigned int k = 0; k < element_terms.size(); ++k)
         local[k] += element_terms[k]->energy(state, v_e);
+      if (element_forces)
+        {
+          for (unsigned int i = 0; i < 9; ++i)
+            centre_e[i] = state.u[i] - v_e[i];
+          const ElementState moving{state.index,
+                                    state.reference,
+                                    state.rest,
+                                    state.x,
+                                    state.u,
+                                    state.predictor,
+                                    centre_e,
+                                    state.psi};
+          g.fill(0.);
+          double unused = 0.;
+          for (const auto &term : element_terms)
+            if (term->kind() == TermKind::dissipative)
+              term->add_to_step(moving, forces, unused, &g, nullptr);
+          for (unsigned int i = 0; i < 9; ++i)
+            (*damping_force)[element.local_dofs[i]] += g[i];
+        }
     });
+    // A hosted term's force comes with its host's.
     for (unsigned int k = 0; k < global_terms.size(); ++k)
-      local[element_terms.size() + k] += global_terms[k]->energy(u, v);
+      {
+        const unsigned int term = element_terms.size() + k;
+        local[term] += global_terms[k]->energy(
+          u, v, assemblers[term] == all_terms[term] ? damping_force : nullptr);
+      }
 
     Energies result;
     result.terms = local;

@@ -7,6 +7,7 @@
 // steppers (area ratios) are evaluated here too.
 
 #include "mesh/discretization.h"
+#include "mesh/local_sums.h"
 #include "physics/term.h"
 
 #include <memory>
@@ -63,12 +64,29 @@ namespace clothsim::physics
 
     // Φ(u) of the step (u ghosted; returned, summed over ranks); if non-null, its
     // gradient (owned, zero at constrained dofs) and Hessian (constrained rows and
-    // columns eliminated, unit diagonal on the unused angle dofs).
+    // columns eliminated, unit diagonal on the unused angle dofs), and the dissipative
+    // terms' part of the gradient alone, rank-local (term.h; from the same loops: with
+    // w_d = 1 and u_n = u - v it is the damping force (α M + β K_n) v of an explicit
+    // step).
     double
     assemble(const VectorType &u,
              const StepTerms  &step,
              VectorType       *gradient,
-             MatrixType       *hessian) const;
+             MatrixType       *hessian,
+             RankVector       *dissipative_gradient = nullptr) const;
+
+    // The dissipative terms' part of the gradient alone at u (ghosted) of the step
+    // `step`, rank-local (term.h): a loop over them only, distributing nothing.
+    void
+    dissipative_gradient(const VectorType &u,
+                         const StepTerms  &step,
+                         RankVector       &gradient) const;
+
+    // A rank-local vector (term.h) dotted with the ghosted vector `ghosted`, summed over
+    // ranks: for a dissipative gradient and a step's displacement, the work done against
+    // damping over the step, J.
+    double
+    work(const RankVector &force, const VectorType &ghosted) const;
 
     // The work done against the dissipative terms over a step: their gradient at the
     // solved iterate `u` (ghosted) of the step `step`, dotted with the step's
@@ -83,9 +101,14 @@ namespace clothsim::physics
     void
     elastic_forces(const VectorType &u, VectorType &forces) const;
 
-    // Energies at displacement u and velocity v (ghosted).
+    // Energies at displacement u and velocity v (ghosted). If non-null,
+    // `damping_force` gets the state's damping force D(u) v from the same loops (the
+    // dissipative terms' gradient with w_d = 1 and u_n = u - v, K_n as last prepared;
+    // rank-local, term.h).
     Energies
-    energies(const VectorType &u, const VectorType &v) const;
+    energies(const VectorType &u,
+             const VectorType &v,
+             RankVector       *damping_force = nullptr) const;
 
     void
     prepare_step(const VectorType &u_n);
@@ -100,12 +123,17 @@ namespace clothsim::physics
     // Wall time spent in each term (in the order of terms()) by assemble() so far, s:
     // measured for the terms with their own loops, estimated for the element terms from
     // every 64th triangle (a clock read per term and triangle would cost as much as a
-    // cheap term).
+    // cheap term). A term that its host assembles (term.h) counts in the host's time.
     const std::vector<double> &
     term_seconds() const
     {
       return seconds;
     }
+
+    // The term whose loop assembles terms()[k]: its host if the host is in the model
+    // (term.h: GlobalTerm::host), else the term itself.
+    const Term *
+    assembled_by(const unsigned int k) const;
 
     // Per-triangle fields at u (ghosted): the Green strain norm sqrt(tr(M²)) and each
     // element term's own fields.
@@ -127,10 +155,15 @@ namespace clothsim::physics
     std::vector<std::unique_ptr<ElementTerm>> element_terms;
     std::vector<std::unique_ptr<GlobalTerm>>  global_terms;
     std::vector<Term *>                       all_terms;
+    std::vector<const Term *>                 assemblers; // per term, see assembled_by()
     bool                                      directors = false;
+    unsigned int                              n_relevant_dofs; // of ghosted vectors
     std::vector<MembraneRestData>             rest; // per element, for strain and areas
-    mutable std::vector<double>               seconds; // per term, see term_seconds()
-    const double                              timing_overhead; // s per sample
+    // With directors: per element, its angle dofs' local indices in ghosted vectors.
+    std::vector<std::array<int, 3>> angle_local_dofs;
+    mutable mesh::LocalSums         gradient_sums;   // the cell loop's gradient
+    mutable std::vector<double>     seconds;         // per term, see term_seconds()
+    const double                    timing_overhead; // s per sample
   };
 
   // Output fields of an element term (membrane stress, curvature change, ...).

@@ -253,41 +253,29 @@ namespace clothsim
 
 
   double
-  SpringNetwork::add_to_potential(const VectorType                &u,
-                                  const bool                       projected,
-                                  const AffineConstraints<double> &constraints,
-                                  VectorType                      *gradient,
-                                  MatrixType                      *hessian) const
+  SpringNetwork::add_damping_force(const VectorType    &v,
+                                   const double         damping_coefficient,
+                                   std::vector<double> &damping_force,
+                                   const VectorType    *u) const
   {
-    if (gradient == nullptr && hessian == nullptr)
-      return energy(u);
-    std::vector<types::global_dof_index> dofs(6);
-    Vector<double>                       cell_vector(6);
-    FullMatrix<double>                   cell_matrix(6, 6);
-    physics::SpringVector                g;
-    physics::SpringMatrix                H;
-    double                               value = 0.;
-    for (const Entry &entry : entries)
+    Assert(damping_blocks.size() == entries.size(), ExcInternalError());
+    AssertDimension(damping_force.size(), n_relevant_dofs);
+    const double *v_local = ghosted_values(v, n_relevant_dofs);
+    double        value   = 0.;
+    for (unsigned int s = 0; s < entries.size(); ++s)
       {
-        value +=
-          physics::spring_energy_gradient_hessian(entry.spring,
-                                                  current_positions(entry, u),
-                                                  projected,
-                                                  g,
-                                                  hessian != nullptr ? &H : nullptr);
-        std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
-        if (gradient != nullptr)
+        const Entry &entry = entries[s];
+        if (u != nullptr)
+          value += physics::spring_energy(entry.spring, current_positions(entry, *u));
+        // c K_n v = c (-B r, B r) with r = v_1 - v_0.
+        Tensor<1, 3> r;
+        for (unsigned int d = 0; d < 3; ++d)
+          r[d] = v_local[entry.local_dofs[3 + d]] - v_local[entry.local_dofs[d]];
+        const Tensor<1, 3> force = damping_coefficient * (damping_blocks[s] * r);
+        for (unsigned int d = 0; d < 3; ++d)
           {
-            for (unsigned int i = 0; i < 6; ++i)
-              cell_vector[i] = g[i];
-            constraints.distribute_local_to_global(cell_vector, dofs, *gradient);
-          }
-        if (hessian != nullptr)
-          {
-            for (unsigned int i = 0; i < 6; ++i)
-              for (unsigned int j = 0; j < 6; ++j)
-                cell_matrix(i, j) = H[i][j];
-            constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
+            damping_force[entry.local_dofs[d]] -= force[d];
+            damping_force[entry.local_dofs[3 + d]] += force[d];
           }
       }
     return value;
@@ -295,45 +283,101 @@ namespace clothsim
 
 
   double
-  SpringNetwork::add_damping(const VectorType                &u,
-                             const double                     damping_coefficient,
-                             const VectorType                &previous,
+  SpringNetwork::add_to_step(const VectorType                &u,
+                             const StepParts                 &parts,
                              const AffineConstraints<double> &constraints,
                              VectorType                      *gradient,
-                             MatrixType                      *hessian) const
+                             MatrixType                      *hessian,
+                             std::vector<double>             *damping_gradient) const
   {
-    Assert(damping_tangents.size() == entries.size(), ExcInternalError());
-    const double *u_local        = ghosted_values(u, n_relevant_dofs);
-    const double *previous_local = ghosted_values(previous, n_relevant_dofs);
+    const double c       = parts.damping_coefficient;
+    const bool   damping = c > 0.;
+    Assert(!damping ||
+             (parts.previous != nullptr && damping_blocks.size() == entries.size()),
+           ExcInternalError());
+    Assert(damping_gradient == nullptr || damping_gradient->size() == n_relevant_dofs,
+           ExcInternalError());
+    if (!damping && gradient == nullptr && hessian == nullptr)
+      return parts.elastic ? energy(u) : 0.;
+
+    const double *u_local = ghosted_values(u, n_relevant_dofs);
+    const double *previous_local =
+      damping ? ghosted_values(*parts.previous, n_relevant_dofs) : nullptr;
     std::vector<types::global_dof_index> dofs(6);
-    Vector<double>                       cell_vector(6);
     FullMatrix<double>                   cell_matrix(6, 6);
+    physics::SpringVector                g;
+    physics::SpringMatrix                H;
     double                               value = 0.;
+    if (gradient != nullptr)
+      gradient_sums.start(u);
     for (unsigned int s = 0; s < entries.size(); ++s)
       {
-        // c/2 sᵀ K_n s, s = u - u_n.
-        const Entry                 &entry = entries[s];
-        const physics::SpringMatrix &K     = damping_tangents[s];
-        std::array<double, 6>        step;
-        for (unsigned int i = 0; i < 6; ++i)
-          step[i] = u_local[entry.local_dofs[i]] - previous_local[entry.local_dofs[i]];
-        for (unsigned int i = 0; i < 6; ++i)
+        const Entry &entry = entries[s];
+        if (parts.elastic)
+          value +=
+            physics::spring_energy_gradient_hessian(entry.spring,
+                                                    current_positions(entry, u),
+                                                    parts.projected,
+                                                    g,
+                                                    hessian != nullptr ? &H : nullptr);
+        else
           {
-            double Ks = 0.;
-            for (unsigned int j = 0; j < 6; ++j)
-              {
-                Ks += K[i][j] * step[j];
-                cell_matrix(i, j) = damping_coefficient * K[i][j];
-              }
-            cell_vector[i] = damping_coefficient * Ks;
-            value += 0.5 * damping_coefficient * step[i] * Ks;
+            g.fill(0.);
+            if (hessian != nullptr)
+              for (auto &row : H)
+                row.fill(0.);
           }
-        std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
+
+        if (damping)
+          {
+            // c/2 sᵀ K_n s with K_n = [[B, -B], [-B, B]]: with r = s_1 - s_0 (the
+            // relative step of the two ends) its value is c/2 rᵀ B r, its gradient
+            // c (-B r, B r), its Hessian c K_n.
+            const Tensor<2, 3> &B = damping_blocks[s];
+            Tensor<1, 3>        r;
+            for (unsigned int d = 0; d < 3; ++d)
+              r[d] = (u_local[entry.local_dofs[3 + d]] -
+                      previous_local[entry.local_dofs[3 + d]]) -
+                     (u_local[entry.local_dofs[d]] - previous_local[entry.local_dofs[d]]);
+            const Tensor<1, 3> force = c * (B * r);
+            value += 0.5 * (force * r);
+            for (unsigned int d = 0; d < 3; ++d)
+              {
+                g[d] -= force[d];
+                g[3 + d] += force[d];
+              }
+            if (damping_gradient != nullptr)
+              for (unsigned int d = 0; d < 3; ++d)
+                {
+                  (*damping_gradient)[entry.local_dofs[d]] -= force[d];
+                  (*damping_gradient)[entry.local_dofs[3 + d]] += force[d];
+                }
+            if (hessian != nullptr)
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int j = 0; j < 3; ++j)
+                  {
+                    const double cB = c * B[i][j];
+                    H[i][j] += cB;
+                    H[3 + i][3 + j] += cB;
+                    H[i][3 + j] -= cB;
+                    H[3 + i][j] -= cB;
+                  }
+          }
+
         if (gradient != nullptr)
-          constraints.distribute_local_to_global(cell_vector, dofs, *gradient);
+          for (unsigned int i = 0; i < 6; ++i)
+            gradient_sums.add(entry.local_dofs[i], g[i]);
         if (hessian != nullptr)
-          constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
+          {
+            std::copy(entry.dofs.begin(), entry.dofs.end(), dofs.begin());
+            for (unsigned int i = 0; i < 6; ++i)
+              for (unsigned int j = 0; j < 6; ++j)
+                cell_matrix(i, j) = H[i][j];
+            constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
+          }
       }
+    if (gradient != nullptr)
+      gradient_sums.add_to(*gradient, constraints);
     return value;
   }
 
@@ -341,14 +385,20 @@ namespace clothsim
   void
   SpringNetwork::prepare_damping(const VectorType &u_n)
   {
-    damping_tangents.resize(entries.size());
+    damping_blocks.resize(entries.size());
     physics::SpringVector gradient;
+    physics::SpringMatrix hessian;
     for (unsigned int s = 0; s < entries.size(); ++s)
-      physics::spring_energy_gradient_hessian(entries[s].spring,
-                                              current_positions(entries[s], u_n),
-                                              /*project=*/true,
-                                              gradient,
-                                              &damping_tangents[s]);
+      {
+        physics::spring_energy_gradient_hessian(entries[s].spring,
+                                                current_positions(entries[s], u_n),
+                                                /*project=*/true,
+                                                gradient,
+                                                &hessian);
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            damping_blocks[s][i][j] = hessian[i][j];
+      }
   }
 
 

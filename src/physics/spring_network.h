@@ -23,6 +23,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include "mesh/local_sums.h"
 #include "physics/mass_spring.h"
 
 #include <array>
@@ -97,25 +98,42 @@ namespace clothsim
     double
     energy(const VectorType &u) const;
 
-    // Adds this rank's springs to a step's potential: energy (returned), gradient and
-    // Hessian (each may be null; distributed through `constraints`, not compressed).
-    // `projected`: each spring's Hessian drops its negative transverse part.
+    // Adds the stiffness-proportional damping force c K_n v at the velocity v (ghosted;
+    // K_n from prepare_damping) to `damping_force` (this rank's relevant dofs in the
+    // order of ghosted vectors, physics/term.h). If `u` is non-null, the same loop
+    // returns the springs' energy at u (else 0).
     double
-    add_to_potential(const VectorType                &u,
-                     const bool                       projected,
-                     const AffineConstraints<double> &constraints,
-                     VectorType                      *gradient,
-                     MatrixType                      *hessian) const;
+    add_damping_force(const VectorType    &v,
+                      const double         damping_coefficient,
+                      std::vector<double> &damping_force,
+                      const VectorType    *u = nullptr) const;
 
-    // Adds stiffness-proportional damping c/2 sᵀ K_n s with s = u - u_n (`previous`,
-    // ghosted), K_n from prepare_damping, like add_to_potential.
+    // What add_to_step adds for each spring.
+    struct StepParts
+    {
+      // The springs' energy ½ k (ℓ - L)²; `projected`: its Hessian drops the negative
+      // transverse part.
+      bool elastic   = true;
+      bool projected = true;
+      // Stiffness-proportional damping c/2 sᵀ K_n s with s = u - u_n (`previous`,
+      // ghosted) and K_n from prepare_damping; off if c = 0.
+      double            damping_coefficient = 0.;
+      const VectorType *previous            = nullptr;
+    };
+
+    // Adds this rank's springs to a step's potential: value (returned), gradient and
+    // Hessian (each may be null; distributed through `constraints`, not compressed).
+    // Each spring's parts are summed into one local vector and matrix and distributed
+    // once. If non-null, `damping_gradient` (this rank's relevant dofs in the order of
+    // ghosted vectors, physics/term.h) also gets the damping's part of the gradient
+    // alone, c K_n s.
     double
-    add_damping(const VectorType                &u,
-                const double                     damping_coefficient,
-                const VectorType                &previous,
+    add_to_step(const VectorType                &u,
+                const StepParts                 &parts,
                 const AffineConstraints<double> &constraints,
                 VectorType                      *gradient,
-                MatrixType                      *hessian) const;
+                MatrixType                      *hessian,
+                std::vector<double>             *damping_gradient = nullptr) const;
 
     // The springs' projected Hessians at u_n, for stiffness-proportional damping.
     void
@@ -162,11 +180,14 @@ namespace clothsim
     void
     color_structural_springs();
 
-    MPI_Comm                           communicator;
-    unsigned int                       n_relevant_dofs;
-    std::vector<Entry>                 entries;
-    std::vector<physics::SpringMatrix> damping_tangents; // per entry, if β > 0
-    std::vector<unsigned int>          colors;           // per entry (structural)
-    unsigned int                       color_count = 0;
+    MPI_Comm           communicator;
+    unsigned int       n_relevant_dofs;
+    std::vector<Entry> entries;
+    // Per entry, if β > 0: the block B of the projected Hessian at u_n,
+    // K_n = [[B, -B], [-B, B]] (physics/mass_spring.h).
+    std::vector<Tensor<2, 3>> damping_blocks;
+    mutable mesh::LocalSums   gradient_sums; // add_to_step's gradient
+    std::vector<unsigned int> colors;        // per entry (structural)
+    unsigned int              color_count = 0;
   };
 } // namespace clothsim

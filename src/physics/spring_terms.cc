@@ -21,16 +21,28 @@ namespace clothsim::physics
                           const StepTerms                 &step,
                           const AffineConstraints<double> &constraints,
                           VectorType                      *gradient,
-                          MatrixType                      *hessian) const
+                          MatrixType                      *hessian,
+                          RankVector                      *dissipative_gradient) const
   {
-    return network->add_to_potential(
-      u, step.projected_tangent, constraints, gradient, hessian);
+    SpringNetwork::StepParts parts =
+      damping != nullptr ? damping->step_parts(step) : SpringNetwork::StepParts();
+    parts.elastic   = true;
+    parts.projected = step.projected_tangent;
+    return network->add_to_step(
+      u, parts, constraints, gradient, hessian, dissipative_gradient);
   }
 
 
   double
-  SpringTerm::energy(const VectorType &u, const VectorType &) const
+  SpringTerm::energy(const VectorType &u,
+                     const VectorType &v,
+                     RankVector       *damping_force) const
   {
+    if (damping_force != nullptr && damping != nullptr)
+      return network->add_damping_force(v,
+                                        damping->stiffness_proportional(),
+                                        *damping_force,
+                                        &u);
     return network->energy(u);
   }
 
@@ -63,11 +75,28 @@ namespace clothsim::physics
 
 
   SpringDamping::SpringDamping(std::shared_ptr<SpringNetwork> network,
-                               const double                   stiffness_proportional)
+                               const double                   stiffness_proportional,
+                               SpringTerm                    *springs)
     : GlobalTerm("spring damping", TermKind::dissipative)
     , network(std::move(network))
     , beta(stiffness_proportional)
-  {}
+    , springs(springs)
+  {
+    if (springs != nullptr)
+      {
+        AssertThrow(springs->network == this->network,
+                    ExcMessage("the spring damping's host has other springs"));
+        springs->damping = this;
+      }
+  }
+
+
+  void
+  SpringDamping::add_couplings(TrilinosWrappers::SparsityPattern &sparsity,
+                               const AffineConstraints<double>   &constraints) const
+  {
+    network->add_sparsity(sparsity, constraints);
+  }
 
 
   void
@@ -77,16 +106,43 @@ namespace clothsim::physics
   }
 
 
+  SpringNetwork::StepParts
+  SpringDamping::step_parts(const StepTerms &step) const
+  {
+    SpringNetwork::StepParts parts;
+    parts.elastic = false;
+    if (step.damping_weight > 0. && step.previous != nullptr)
+      {
+        parts.damping_coefficient = step.damping_weight * beta;
+        parts.previous            = step.previous;
+      }
+    return parts;
+  }
+
+
+  double
+  SpringDamping::energy(const VectorType &,
+                        const VectorType &v,
+                        RankVector       *damping_force) const
+  {
+    if (damping_force != nullptr)
+      network->add_damping_force(v, beta, *damping_force);
+    return 0.;
+  }
+
+
   double
   SpringDamping::add_to_step(const VectorType                &u,
                              const StepTerms                 &step,
                              const AffineConstraints<double> &constraints,
                              VectorType                      *gradient,
-                             MatrixType                      *hessian) const
+                             MatrixType                      *hessian,
+                             RankVector                      *dissipative_gradient) const
   {
-    if (step.damping_weight == 0. || step.previous == nullptr)
+    const SpringNetwork::StepParts parts = step_parts(step);
+    if (parts.damping_coefficient == 0.)
       return 0.;
-    return network->add_damping(
-      u, step.damping_weight * beta, *step.previous, constraints, gradient, hessian);
+    return network->add_to_step(
+      u, parts, constraints, gradient, hessian, dissipative_gradient);
   }
 } // namespace clothsim::physics

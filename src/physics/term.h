@@ -56,6 +56,14 @@ namespace clothsim::physics
     constraint
   };
 
+  // This rank's contributions to a vector, on its locally relevant dofs in the order of
+  // ghosted vectors (their local indices: Discretization::Element::local_dofs,
+  // SpringNetwork::Entry::local_dofs), with no constraints applied and not summed over
+  // ranks. Adding to it costs no global index lookup; its dot product with a ghosted
+  // vector, summed over ranks, is the global one (Model::work). Used for the dissipative
+  // terms' part of the gradient, the damping force of the energy budget.
+  using RankVector = std::vector<double>;
+
   // 12 local unknowns of an element: x0, x1, x2 (9), then the edge angles ψ0, ψ1, ψ2.
   using LocalVector = BendingVector;
   using LocalMatrix = BendingMatrix;
@@ -165,16 +173,32 @@ namespace clothsim::physics
 
     // Adds this rank's part of Φ at u (ghosted; returned, not summed over ranks) to
     // `gradient` (owned) and `hessian` (each may be null), distributed through
-    // `constraints`, not compressed.
+    // `constraints`, not compressed. If non-null, `dissipative_gradient` (sized to the
+    // relevant dofs) also gets the gradient of the dissipative terms this call adds (the
+    // term itself if dissipative, and any it hosts) alone.
     virtual double
     add_to_step(const VectorType                &u,
                 const StepTerms                 &step,
                 const AffineConstraints<double> &constraints,
                 VectorType                      *gradient,
-                MatrixType                      *hessian) const = 0;
+                MatrixType                      *hessian,
+                RankVector                      *dissipative_gradient) const = 0;
 
-    // This rank's part of the energy at (u, v) (ghosted).
+    // The term whose loop also adds this one (the springs' loop adds their damping: each
+    // spring's parts summed and distributed once), or null. Model::assemble leaves a
+    // term to its host when the host is in the model; alone (the dissipative terms'
+    // gradient for the energy budget, a model without the host) it adds itself.
+    virtual const GlobalTerm *
+    host() const
+    {
+      return nullptr;
+    }
+
+    // This rank's part of the energy at (u, v) (ghosted). If non-null, `damping_force`
+    // (sized to the relevant dofs) also gets the damping force at (u, v) of the
+    // dissipative terms this call covers (the term itself if dissipative, and any it
+    // hosts): their gradient with w_d = 1 and u_n = u - v, K_n as last prepared.
     virtual double
-    energy(const VectorType &u, const VectorType &v) const = 0;
+    energy(const VectorType &u, const VectorType &v, RankVector *damping_force) const = 0;
   };
 } // namespace clothsim::physics

@@ -148,9 +148,15 @@ namespace clothsim
         springs = std::make_shared<SpringNetwork>(discretization.get_dof_handler(),
                                                   constants,
                                                   prototype);
-        model->add(std::make_unique<physics::SpringTerm>(springs));
+        // The springs' loop adds their damping too (one distribution per spring).
+        auto spring_term = std::make_unique<physics::SpringTerm>(springs);
+        std::unique_ptr<physics::SpringDamping> spring_damping;
         if (dynamic && beta > 0.)
-          model->add(std::make_unique<physics::SpringDamping>(springs, beta));
+          spring_damping =
+            std::make_unique<physics::SpringDamping>(springs, beta, spring_term.get());
+        model->add(std::move(spring_term));
+        if (spring_damping)
+          model->add(std::move(spring_damping));
       }
     if (!parameters.loads.point_forces.empty() || !parameters.loads.line_forces.empty())
       model->add(std::make_unique<physics::ExternalLoads>(
@@ -248,8 +254,24 @@ namespace clothsim
                        const VectorType &v,
                        const double      dissipated) const
   {
-    const physics::Energies        energies = model->energies(u, v);
-    const std::vector<std::string> columns  = energy_columns();
+    return report(model->energies(u, v), dissipated);
+  }
+
+
+  EnergyReport
+  ClothModel::energies(const VectorType    &u,
+                       const VectorType    &v,
+                       const double         dissipated,
+                       physics::RankVector &damping_force) const
+  {
+    return report(model->energies(u, v, &damping_force), dissipated);
+  }
+
+
+  EnergyReport
+  ClothModel::report(const physics::Energies &energies, const double dissipated) const
+  {
+    const std::vector<std::string> columns = energy_columns();
     EnergyReport                   report{energies.kinetic,
                         energies.elastic,
                         energies.potential,

@@ -185,6 +185,19 @@ namespace clothsim
     {
       model->commit_step(u, u_owned);
     }
+    void
+    assemble_gradient(const VectorType    &u,
+                      const StepTerms     &step,
+                      VectorType          &gradient,
+                      physics::RankVector &dissipative_gradient) const override
+    {
+      model->assemble(u, step, &gradient, nullptr, &dissipative_gradient);
+    }
+    double
+    work(const physics::RankVector &force, const VectorType &displacement) const override
+    {
+      return model->work(force, displacement);
+    }
     double
     dissipated_work(const VectorType &u,
                     const StepTerms  &step,
@@ -217,6 +230,11 @@ namespace clothsim
     energies(const VectorType &u,
              const VectorType &v,
              const double      dissipated) const override;
+    EnergyReport
+    energies(const VectorType    &u,
+             const VectorType    &v,
+             const double         dissipated,
+             physics::RankVector &damping_force) const override;
     io::FrameData
     output_fields(const VectorType &u, const VectorType &v) const override;
 
@@ -224,6 +242,11 @@ namespace clothsim
     // Chooses and adds the terms the scene needs.
     void
     add_terms(const std::string &parameter_file, const mesh::MeshGroups &groups);
+
+    // The report of the model's energies, with the work `dissipated` in the dissipative
+    // terms' column.
+    EnergyReport
+    report(const physics::Energies &energies, const double dissipated) const;
 
     const Parameters                   &parameters;
     mesh::Discretization                discretization;

@@ -158,16 +158,23 @@ namespace clothsim
 
 
   void
-  ExplicitStepper::acceleration(const VectorType &u, const VectorType &v, VectorType &a)
+  ExplicitStepper::acceleration(const VectorType    &u,
+                                const VectorType    &v,
+                                VectorType          &a,
+                                physics::RankVector *damping_force)
   {
     TimerOutput::Scope scope(timer, "assemble forces");
     // ∇Φ with no inertia and the damping term centred at u - v: its gradient is
-    // ∇W - f_g - f_ext + (α M + β K(u)) v, zero on pinned dofs.
+    // ∇W - f_g - f_ext + (α M + β K(u)) v, zero on pinned dofs; its dissipative part
+    // alone is the damping force (α M + β K(u)) v.
     const StepTerms terms = damping_terms(u, v);
     work_ghosted          = u;
     if (parameters.damping.stiffness_proportional > 0.)
       model.prepare_step(work_ghosted);
-    model.assemble(work_ghosted, terms, &gradient, nullptr);
+    if (damping_force != nullptr)
+      model.assemble_gradient(work_ghosted, terms, gradient, *damping_force);
+    else
+      model.assemble(work_ghosted, terms, &gradient, nullptr);
     a = gradient;
     a.scale(inverse_mass);
     a *= -1.;
@@ -183,8 +190,8 @@ namespace clothsim
     const double interval = parameters.output.interval;
     const double epsilon  = 1e-9 * dt;
 
-    VectorType u, v, a, u_old, v_old;
-    for (VectorType *vector : {&u, &v, &a, &u_old, &v_old})
+    VectorType u, v, a, u_old;
+    for (VectorType *vector : {&u, &v, &a, &u_old})
       model.initialize_owned(*vector);
     model.initial_state(u, v);
     work_ghosted = u;
@@ -217,9 +224,10 @@ namespace clothsim
     double next_output      = interval > 0. ? interval : end;
     double checked_activity = 0.; // K + W at the last area check, J
 
-    StepTimes step_times(timer);
+    StepTimes  step_times(timer);
+    const bool dissipation = model.has_dissipation();
     if (verlet)
-      acceleration(u, v, a);
+      acceleration(u, v, a, dissipation ? &damping_force : nullptr);
     double       time   = 0.;
     unsigned int step   = 0;
     bool         warned = dt > safe_fraction * critical.estimate;
@@ -230,7 +238,10 @@ namespace clothsim
         const double time_new = std::min({time + dt, next_output, end});
         const double h        = time_new - time;
         u_old                 = u;
-        v_old                 = v;
+        // The energy budget needs the damping force at the step's start, D(u_n) v_n:
+        // symplectic Euler's force evaluation gives it; Verlet's last one saw v_{n-1/2},
+        // so there the energies of (u_n, v_n) gave it (below; at the start, the first
+        // force evaluation).
         if (verlet)
           {
             v.add(0.5 * h, a); // v_{n+1/2}
@@ -238,7 +249,7 @@ namespace clothsim
           }
         else
           {
-            acceleration(u, v, a);
+            acceleration(u, v, a, dissipation ? &damping_force : nullptr);
             v.add(h, a);
             u.add(h, v);
           }
@@ -250,8 +261,8 @@ namespace clothsim
         v.compress(VectorOperation::insert);
         // The work against damping: its force at the step's start, D(u_n) v_n, over the
         // step's displacement (exact for symplectic Euler, first order for Verlet).
-        if (model.has_dissipation())
-          add_dissipation(u_old, damping_terms(u_old, v_old), u, u_old);
+        if (dissipation)
+          add_dissipation(damping_force, u, u_old);
         if (verlet)
           {
             acceleration(u, v, a);
@@ -270,10 +281,13 @@ namespace clothsim
         time = time_new;
         ++step;
 
-        u_ghosted                   = u;
-        v_ghosted                   = v;
-        const EnergyReport energies = current_energies();
-        const bool         output_now =
+        u_ghosted = u;
+        v_ghosted = v;
+        // Verlet: with D(u_{n+1}) v_{n+1} for the next step (K was last prepared at
+        // u_{n+1}).
+        const EnergyReport energies =
+          verlet && dissipation ? current_energies(damping_force) : current_energies();
+        const bool output_now =
           interval == 0. || time >= next_output - epsilon || time >= end - epsilon;
         // Blow-up: a non-finite energy every step; a collapsed or hundredfold grown
         // triangle every 10 steps, at output times, and whenever K + W has more than

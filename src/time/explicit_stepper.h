@@ -81,9 +81,14 @@ namespace clothsim
     }
 
   private:
-    // a = M⁻¹ f(u, v) on the free dofs, zero on pinned ones. u, v owned.
+    // a = M⁻¹ f(u, v) on the free dofs, zero on pinned ones. u, v owned. If
+    // `damping_force` is non-null, it gets the damping force D(u) v of the same
+    // evaluation (rank-local, physics/term.h) for the energy budget.
     void
-    acceleration(const VectorType &u, const VectorType &v, VectorType &a);
+    acceleration(const VectorType    &u,
+                 const VectorType    &v,
+                 VectorType          &a,
+                 physics::RankVector *damping_force = nullptr);
 
     // The damping force of the state (u, v) (owned) as a step's damping term: weight 1,
     // centre u - v. Sets `centre` and `centre_ghosted`.
@@ -95,6 +100,8 @@ namespace clothsim
     VectorType centre;         // owned: u - v, the damping term's centre
     VectorType centre_ghosted, // ghosted
       work_ghosted;
-    CriticalStep critical{};
+    // The damping force at the current step's start, D(u_n) v_n (rank-local).
+    physics::RankVector damping_force;
+    CriticalStep        critical{};
   };
 } // namespace clothsim

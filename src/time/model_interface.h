@@ -75,6 +75,18 @@ namespace clothsim
     // After a converged step at u (ghosted); `u_owned` may change (director re-basing).
     virtual void
     commit_step(const VectorType &u, VectorType &u_owned) = 0;
+    // The gradient of the step as assemble() gives it and, from the same loops, its
+    // dissipative terms' part alone, rank-local (physics/term.h): with w_d = 1 and
+    // u_n = u - v, the damping force D(u) v of an explicit step.
+    virtual void
+    assemble_gradient(const VectorType    &u,
+                      const StepTerms     &step,
+                      VectorType          &gradient,
+                      physics::RankVector &dissipative_gradient) const = 0;
+    // A rank-local vector dotted with a ghosted one, summed over ranks: the work of a
+    // force over a displacement, J.
+    virtual double
+    work(const physics::RankVector &force, const VectorType &displacement) const = 0;
     // The work done against the dissipative terms over a step (see physics/model.h), J.
     virtual double
     dissipated_work(const VectorType &u,
@@ -105,6 +117,14 @@ namespace clothsim
     // terms so far, J, reported in their column.
     virtual EnergyReport
     energies(const VectorType &u, const VectorType &v, const double dissipated) const = 0;
+    // The same and, from the same loops, the state's damping force D(u) v (the
+    // dissipative terms' gradient with w_d = 1 and u_n = u - v, K_n as last prepared;
+    // rank-local, physics/term.h).
+    virtual EnergyReport
+    energies(const VectorType    &u,
+             const VectorType    &v,
+             const double         dissipated,
+             physics::RankVector &damping_force) const = 0;
 
     // The fields of an output frame at (u, v), ghosted.
     virtual io::FrameData

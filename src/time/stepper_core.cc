@@ -118,6 +118,24 @@ namespace clothsim
 
 
   void
+  StepperCore::add_dissipation(const physics::RankVector &dissipative_gradient,
+                               const VectorType          &u_new,
+                               const VectorType          &u_old)
+  {
+    TimerOutput::Scope scope(timer, "energy budget");
+    if (increment.size() == 0)
+      {
+        model.initialize_ghosted(increment);
+        model.initialize_ghosted(solved_ghosted);
+      }
+    VectorType difference(u_new);
+    difference -= u_old;
+    increment = difference;
+    dissipated += model.work(dissipative_gradient, increment);
+  }
+
+
+  void
   StepperCore::record(const unsigned int  step,
                       const double        time,
                       const double        dt,

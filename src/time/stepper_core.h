@@ -111,11 +111,25 @@ namespace clothsim
                     const VectorType &u_new,
                     const VectorType &u_old);
 
+    // The same with the dissipative terms' gradient given (rank-local, physics/term.h;
+    // the explicit steps' damping force at the step's start, from their force
+    // evaluation).
+    void
+    add_dissipation(const physics::RankVector &dissipative_gradient,
+                    const VectorType          &u_new,
+                    const VectorType          &u_old);
+
     // The energies at (u_ghosted, v_ghosted), with the dissipation so far.
     EnergyReport
     current_energies() const
     {
       return model.energies(u_ghosted, v_ghosted, dissipated);
+    }
+    // The same and the state's damping force (ModelInterface::energies).
+    EnergyReport
+    current_energies(physics::RankVector &damping_force) const
+    {
+      return model.energies(u_ghosted, v_ghosted, dissipated, damping_force);
     }
 
     // The statistics row of an accepted step with the energies of its state.
