@@ -53,7 +53,9 @@ namespace clothsim
     prm.declare_entry("Absolute tolerance",
                       "1e-9",
                       Patterns::Double(0., 1e10),
-                      "Converged when the residual's 2-norm (N) is below this, ...");
+                      "Converged when the residual's root mean square over the unknowns "
+                      "(its 2-norm over the square root of their number, as NOX's "
+                      "length-scaled norm; N) is below this, ...");
     prm.declare_entry(
       "Relative tolerance",
       "1e-8",
@@ -71,7 +73,8 @@ namespace clothsim
       "1e-6",
       Patterns::Double(0., 1e3),
       "... or when a full Newton step (not cut by the line search) moves no "
-      "vertex coordinate by more than this (m). 0 disables this criterion.");
+      "vertex coordinate by more than this (m; director angles do not count). 0 "
+      "disables this criterion.");
     prm.declare_entry(
       "Print iterations",
       "false",

@@ -59,6 +59,7 @@ namespace clothsim
       TimerOutput                     &timer;
       TrilinosVector                   u, rhs, solution;
       TrilinosVector                   iterate; // where the direction is computed
+      TrilinosVector                   update;  // the last Newton update (status tests)
       unsigned int                     linear_iterations   = 0;
       unsigned int                     projected_fallbacks = 0;
       unsigned int                     tangents            = 0;
@@ -303,8 +304,9 @@ namespace clothsim
     class SmallFullStep : public NOX::StatusTest::Generic
     {
     public:
-      explicit SmallFullStep(const double tolerance)
+      SmallFullStep(const double tolerance, Context &context)
         : tolerance(tolerance)
+        , context(context)
       {}
 
       NOX::StatusTest::StatusType
@@ -319,7 +321,8 @@ namespace clothsim
           return status;
         auto update = solver.getSolutionGroup().getX().clone(NOX::DeepCopy);
         update->update(-1., solver.getPreviousSolutionGroup().getX(), 1.);
-        if (update->norm(NOX::Abstract::Vector::MaxNorm) < tolerance)
+        copy(epetra(*update), context.update);
+        if (context.problem.update_size(context.update) < tolerance)
           status = NOX::StatusTest::Converged;
         return status;
       }
@@ -340,6 +343,7 @@ namespace clothsim
 
     private:
       const double                tolerance;
+      Context                    &context;
       NOX::StatusTest::StatusType status = NOX::StatusTest::Unevaluated;
     };
 
@@ -425,6 +429,7 @@ namespace clothsim
                     u,
                     u,
                     u,
+                    u,
                     0,
                     0,
                     0,
@@ -495,7 +500,7 @@ namespace clothsim
     const double step_tolerance =
       std::max(parameters.displacement_tolerance, minimum_displacement_tolerance);
     if (step_tolerance > 0.)
-      converged->addStatusTest(Teuchos::rcp(new SmallFullStep(step_tolerance)));
+      converged->addStatusTest(Teuchos::rcp(new SmallFullStep(step_tolerance, context)));
     auto max_iterations = Teuchos::rcp(
       new NOX::StatusTest::MaxIters(single_step ? 1 : parameters.max_iterations));
     auto finite = Teuchos::rcp(new NOX::StatusTest::FiniteValue);

@@ -44,6 +44,14 @@ namespace clothsim
     tangent(const TrilinosWrappers::MPI::Vector &u,
             TrilinosWrappers::SparseMatrix      &J,
             const bool                           projected) = 0;
+
+    // The size of a Newton update for the step-size convergence test: its largest
+    // displacement component (m, over all ranks). The default takes every unknown.
+    virtual double
+    update_size(const TrilinosWrappers::MPI::Vector &update) const
+    {
+      return update.linfty_norm();
+    }
   };
 
   struct NewtonResult

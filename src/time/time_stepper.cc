@@ -49,6 +49,15 @@ namespace clothsim
         model.assemble(ghosted, terms, nullptr, &J);
       }
 
+      double
+      update_size(const VectorType &update) const override
+      {
+        double largest = 0.;
+        for (const types::global_dof_index i : model.displacement_dofs())
+          largest = std::max(largest, std::abs(update[i]));
+        return Utilities::MPI::max(largest, model.get_communicator());
+      }
+
     private:
       const ModelInterface &model;
       StepTerms             terms;
