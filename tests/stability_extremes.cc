@@ -45,14 +45,12 @@
 //    default damping the midpoint runs dissipate and get the strict check.
 // e. the cases of 7: no kinetic or elastic energy above 1e9 J written before the stop.
 // A run's outcome, steps, largest probe displacement and energy growth are printed in a
-// table at the end.
+// table at the end. The runs and the checks a, b and d are in extreme_runs.h (shared with
+// swing_extremes.cc).
 
-#include "test_support.h"
+#include "extreme_runs.h"
 
 #include <algorithm>
-#include <chrono>
-#include <cstdlib>
-#include <limits>
 
 using namespace clothsim;
 using namespace clothsim::test;
@@ -84,23 +82,6 @@ namespace
     EnergyCheck              energy    = EnergyCheck::dissipative;
   };
 
-  struct Outcome
-  {
-    bool        finished = false;
-    bool        stopped  = false; // SimulationError
-    std::string message;          // its message, or another exception's
-    int         steps        = -1;
-    double      time_reached = 0.;
-    double      probe_max_u  = 0.; // largest |u| at the probes over the rows written
-    double      final_max_u  = std::numeric_limits<double>::quiet_NaN();
-    double      growth       = 0.; // max_n E_n - E_0, J
-    double      step_growth  = 0.; // max_n E_n+1 - E_n, J (0 without steps)
-    double      deviation    = 0.; // max_n |E_n - E_0|, J
-    double      scale        = 0.; // S = max_n (K + W + |P|), J
-    double      seconds      = 0.;
-    bool        passed       = true;
-  };
-
   std::string
   young_times(const double factor)
   {
@@ -110,144 +91,26 @@ namespace
   const std::vector<std::string> no_damping = {"Damping/Mass proportional=0",
                                                "Damping/Stiffness proportional=0"};
 
-  // Checks that every field of `file` (but the columns named in `text_columns`) is a
-  // finite number and every row has the header's number of fields. Returns the number of
-  // bad fields; prints the first.
-  unsigned int
-  count_bad_fields(ConditionalOStream             &pcout,
-                   const std::string              &file,
-                   const std::vector<std::string> &text_columns)
-  {
-    if (!fs::exists(file))
-      {
-        pcout << "  FAIL  " << file << " was not written" << std::endl;
-        return 1;
-      }
-    const Csv    csv = read_csv(file);
-    unsigned int bad = 0;
-    for (unsigned int r = 0; r < csv.rows.size(); ++r)
-      {
-        const auto &row = csv.rows[r];
-        if (row.size() != csv.header.size())
-          {
-            if (bad++ == 0)
-              pcout << "  FAIL  " << file << ": row " << r + 1 << " has " << row.size()
-                    << " fields, the header " << csv.header.size() << std::endl;
-            continue;
-          }
-        for (unsigned int c = 0; c < row.size(); ++c)
-          {
-            if (std::find(text_columns.begin(), text_columns.end(), csv.header[c]) !=
-                text_columns.end())
-              continue;
-            const char  *begin = row[c].c_str();
-            char        *end   = nullptr;
-            const double value = std::strtod(begin, &end);
-            if (row[c].empty() || *end != '\0' || !std::isfinite(value))
-              if (bad++ == 0)
-                pcout << "  FAIL  " << file << ": row " << r + 1 << ", " << csv.header[c]
-                      << " = '" << row[c] << "' is not a finite number" << std::endl;
-          }
-      }
-    return bad;
-  }
-
-  // Steps, time, energy growth and the probes' largest displacement from the files a run
-  // wrote (also when it stopped).
-  void
-  read_results(const fs::path &directory, Outcome &outcome)
-  {
-    const Csv statistics = read_csv(directory / "statistics.csv");
-    if (statistics.rows.empty())
-      return;
-    const unsigned int last = statistics.rows.size() - 1;
-    outcome.steps           = std::lround(statistics.number(last, "step"));
-    outcome.time_reached    = statistics.number(last, "time");
-    const double initial    = statistics.number(0, "total_energy");
-    double       previous   = initial;
-    outcome.step_growth     = last > 0 ? -std::numeric_limits<double>::max() : 0.;
-    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
-      {
-        const double total = statistics.number(r, "total_energy");
-        outcome.growth     = std::max(outcome.growth, total - initial);
-        outcome.deviation  = std::max(outcome.deviation, std::abs(total - initial));
-        if (r > 0)
-          outcome.step_growth = std::max(outcome.step_growth, total - previous);
-        previous      = total;
-        outcome.scale = std::max(outcome.scale,
-                                 statistics.number(r, "kinetic_energy") +
-                                   statistics.number(r, "elastic_energy") +
-                                   std::abs(statistics.number(r, "potential_energy")));
-      }
-    const Csv probes = read_csv(directory / "probes.csv");
-    for (unsigned int r = 0; r < probes.rows.size(); ++r)
-      {
-        const double ux = probes.number(r, "ux"), uy = probes.number(r, "uy"),
-                     uz = probes.number(r, "uz");
-        outcome.probe_max_u =
-          std::max(outcome.probe_max_u, std::sqrt(ux * ux + uy * uy + uz * uz));
-      }
-  }
-
-  Outcome
+  GuardedRun
   run_case(ConditionalOStream &pcout, const Case &c)
   {
     pcout << c.name << " (" << c.settings << ")" << std::endl;
     const fs::path directory = root / c.name;
-    fs::remove_all(directory);
-    const std::vector<std::string> overrides =
-      join({"Time/End time=" + number(c.end_time), "Output/Progress=off"}, c.overrides);
-
-    Outcome    outcome;
-    const auto start = std::chrono::steady_clock::now();
-    try
-      {
-        const SceneRun run =
-          run_scene(default_prm, overrides, directory.string(), MPI_COMM_WORLD);
-        outcome.finished    = true;
-        outcome.final_max_u = run.displacement.linfty_norm();
-      }
-    catch (const SimulationError &error)
-      {
-        outcome.stopped = true;
-        outcome.message = error.what();
-      }
-    catch (const std::exception &error)
-      {
-        outcome.message =
-          std::string("exception other than SimulationError: ") + error.what();
-      }
-    catch (...)
-      {
-        outcome.message = "unknown exception";
-      }
-    outcome.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!outcome.message.empty())
-      pcout << "  " << (outcome.stopped ? "stopped: " : "") << outcome.message
-            << std::endl;
-
+    // a. finished or stopped cleanly; b. nothing non-finite written.
+    GuardedRun outcome =
+      run_guarded(pcout,
+                  default_prm,
+                  join({"Time/End time=" + number(c.end_time), "Output/Progress=off"},
+                       c.overrides),
+                  directory,
+                  MPI_COMM_WORLD);
     bool &passed = outcome.passed;
-    // a. finished or stopped cleanly; the explicit cases beyond the limit stopped.
-    passed &= check(pcout,
-                    outcome.finished || (outcome.stopped && !outcome.message.empty()),
-                    std::string("outcome: ") + (outcome.finished ? "finished"
-                                                : outcome.stopped
-                                                  ? "stopped with a SimulationError"
-                                                  : "crashed out of the run"));
+    // a. the explicit cases beyond the limit stopped.
     if (c.must_stop)
       passed &=
         check(pcout, outcome.stopped, "the divergence is detected (SimulationError)");
-
-    // b. nothing non-finite written.
-    const unsigned int bad =
-      count_bad_fields(pcout, (directory / "statistics.csv").string(), {}) +
-      count_bad_fields(pcout, (directory / "probes.csv").string(), {"probe"});
-    passed &= check_below(pcout, "non-finite or malformed fields written", bad, 0.5);
-    if (bad > 0 || !fs::exists(directory / "statistics.csv") ||
-        !fs::exists(directory / "probes.csv"))
+    if (!outcome.files_read)
       return outcome;
-    read_results(directory, outcome);
 
     // e. a diverging explicit run is stopped before it writes absurd energies (the
     //    sheet's physical energies are below 0.1 J; a blow-up grows about 1e4-fold per
@@ -275,12 +138,7 @@ namespace
     if (c.energy == EnergyCheck::dissipative)
       {
         const double tolerance = 1e-6 * outcome.scale + 1e-15;
-        passed &=
-          check_below(pcout, "energy growth max E_n - E_0, J", outcome.growth, tolerance);
-        passed &= check_below(pcout,
-                              "energy growth per step max E_n+1 - E_n, J",
-                              outcome.step_growth,
-                              tolerance);
+        passed &= check_no_energy_gain(pcout, outcome, tolerance, tolerance);
       }
     else if (c.energy == EnergyCheck::bounded)
       passed &= check_below(pcout,
@@ -307,14 +165,6 @@ namespace
           largest = std::max(largest, longest * longest / (2. * cell->measure()));
         }
     return Utilities::MPI::max(largest, MPI_COMM_WORLD);
-  }
-
-  std::string
-  scientific(const double value, const int digits = 2)
-  {
-    std::ostringstream out;
-    out << std::scientific << std::setprecision(digits) << value;
-    return out.str();
   }
 } // namespace
 
@@ -429,7 +279,7 @@ main(int argc, char **argv)
         true,
         EnergyCheck::none}};
 
-  std::vector<Outcome> outcomes;
+  std::vector<GuardedRun> outcomes;
   for (const Case &c : cases)
     {
       outcomes.push_back(run_case(pcout, c));
@@ -446,15 +296,11 @@ main(int argc, char **argv)
         << "  check" << std::endl;
   for (unsigned int i = 0; i < cases.size(); ++i)
     {
-      const Case    &c = cases[i];
-      const Outcome &o = outcomes[i];
+      const Case       &c = cases[i];
+      const GuardedRun &o = outcomes[i];
       pcout << std::left << std::setw(22) << c.name << std::setw(46) << c.settings
-            << std::setw(10)
-            << (o.finished  ? "finished"
-                : o.stopped ? "stopped"
-                            : "CRASHED")
-            << std::right << std::setw(6) << o.steps << std::setw(9)
-            << std::setprecision(4) << o.time_reached << std::setw(11)
+            << std::setw(10) << outcome_name(o) << std::right << std::setw(6) << o.steps
+            << std::setw(9) << std::setprecision(4) << o.time_reached << std::setw(11)
             << scientific(o.probe_max_u) << std::setw(11)
             << (c.energy == EnergyCheck::none ? "-" : scientific(o.step_growth))
             << std::setw(10) << scientific(o.scale) << std::setw(11)

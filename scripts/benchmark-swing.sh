@@ -1,0 +1,214 @@
+#!/usr/bin/env bash
+# Cost of the swinging sheet (params/benchmarks/swing.prm) against the mesh size, for the
+# finite elements and the mass-spring model on the same mesh, all measured in this one
+# invocation (compare the ratios, not the absolute times of different machines).
+#
+# For each N of --sizes it runs clothsim on meshes/swing-N.msh (N x N vertices, generated
+# from its .geo on first use) once with "Model=fem" and once with "Model=mass-spring",
+# then prints one table, a row per N and model:
+#   vertices        of the mesh, as the run reports it
+#   steps           time steps taken (last row of statistics.csv)
+#   halvings        step halvings after a failed Newton solve ("step halvings" of the run)
+#   wall_s          wall time of the time loop (the last wall_seconds of statistics.csv:
+#                   it counts from the first frame, so it is not summed)
+#   us/vtx-step     wall_s / (vertices x steps), in microseconds
+#   newton/step     Newton iterations per step, failed attempts included
+#   lin/newton      linear iterations per Newton iteration
+#   fem/ms          (fem rows) the fem cost per vertex-step over the mass-spring one
+#   vs_N0           the cost per vertex-step over the same model's at the smallest N
+#   status          ok, or FAILED with the time the run reached
+# A run that fails ends the benchmark: the rows measured so far (the failed run's from
+# what it wrote, its iteration counts from its accepted steps only, marked *) are
+# printed, then one line on stderr with clothsim's message, and the exit code is 1. The
+# output directory is then kept for its logs. Progress lines go to stderr, the table to
+# stdout.
+#
+# Usage: scripts/benchmark-swing.sh [options]
+#   --sizes "N ..."   vertices per side (default "21 41 81 161 321"; a meshes/swing-N.geo
+#                     must exist)
+#   --end-time T      simulated time, s (default 2, as the scene)
+#   --params FILE     parameter file (default params/benchmarks/swing.prm; e.g.
+#                     params/benchmarks/swing-membrane.prm)
+#   --set "S/N=V"     passed to every run (repeatable), e.g. --set "Time/Integrator=bdf2"
+#                     --set "Linear solver/Method=cg"; the model is set after them
+#   --build DIR       build directory holding clothsim (default build/ of the source tree)
+#   --output DIR      where the runs write (DIR/N-<N>/<model>/, with run.log); default a
+#                     temporary directory, removed at the end unless --keep is given
+#   --keep            keep the temporary output directory (its path is printed)
+# Example: scripts/benchmark-swing.sh --sizes "21 41" --end-time 0.2
+# Time: at the solver's speed when this was written, N = 41 alone takes about 20 s per
+# 0.5 s of simulated time (fem), and the cost per vertex-step grows with N: the defaults
+# take long.
+set -uo pipefail
+
+repository=$(cd "$(dirname "$0")/.." && pwd)
+sizes="21 41 81 161 321"
+end_time=2
+params="$repository/params/benchmarks/swing.prm"
+build="$repository/build"
+output=""
+keep=false
+overrides=()
+
+usage() {
+  sed -n '/^# Usage:/,/^# Time:/p' "$0" | sed 's/^# \{0,1\}//' | sed '$d'
+}
+die() {
+  echo "benchmark-swing: error: $*" >&2
+  exit 1
+}
+
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --sizes | --end-time | --params | --set | --build | --output)
+      [ $# -ge 2 ] || die "$1 expects a value"
+      case "$1" in
+        --sizes) sizes=$2 ;;
+        --end-time) end_time=$2 ;;
+        --params) params=$2 ;;
+        --set) overrides+=(--set "$2") ;;
+        --build) build=$2 ;;
+        --output) output=$2 ;;
+      esac
+      shift 2
+      ;;
+    --keep)
+      keep=true
+      shift
+      ;;
+    -h | --help)
+      usage
+      exit 0
+      ;;
+    *) die "unknown option '$1' (see --help)" ;;
+  esac
+done
+
+clothsim="$build/clothsim"
+[ -x "$clothsim" ] || die "no clothsim executable in '$build' (build first, or --build DIR)"
+[ -f "$params" ] || die "no parameter file '$params'"
+params=$(cd "$(dirname "$params")" && pwd)/$(basename "$params")
+awk -v t="$end_time" 'BEGIN { exit !(t ~ /^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && t > 0) }' ||
+  die "--end-time: '$end_time' is not a positive number"
+sizes=$(tr -s ' \t' '\n' <<<"$sizes" | grep . | sort -n -u | tr '\n' ' ')
+sizes=${sizes% }
+[ -n "$sizes" ] || die "--sizes: no size given"
+for n in $sizes; do
+  [[ "$n" =~ ^[0-9]+$ ]] || die "--sizes: '$n' is not a number of vertices"
+  [ -f "$repository/meshes/swing-$n.geo" ] ||
+    die "--sizes: no mesh meshes/swing-$n.geo (there are:" \
+      "$(find "$repository/meshes" -name 'swing-*.geo' | sed 's/.*swing-\([0-9]*\)\.geo/\1/' |
+        sort -n | tr '\n' ' '))"
+done
+
+if [ -z "$output" ]; then
+  output=$(mktemp -d "${TMPDIR:-/tmp}/benchmark-swing.XXXXXX") || die "cannot create a temporary directory"
+  temporary=true
+else
+  mkdir -p "$output" || die "cannot create the output directory '$output'"
+  temporary=false
+fi
+output=$(cd "$output" && pwd)
+
+# One row per run, tab-separated: n model vertices steps halvings wall newton linear
+# status, where newton and linear are totals.
+rows=()
+
+# measure DIR: the row's fields from DIR/run.log and DIR/statistics.csv.
+measure() {
+  local directory=$1 log="$1/run.log" statistics="$1/statistics.csv"
+  local vertices steps wall newton linear halvings done_line
+  vertices=$(sed -n 's/^  mesh .*: \([0-9]*\) vertices,.*/\1/p' "$log" | head -n 1)
+  done_line=$(grep '^done: ' "$log" | tail -n 1)
+  if [ -f "$statistics" ]; then
+    # steps and wall time from the last row; iterations summed over the accepted steps.
+    read -r steps wall newton linear < <(awk -F, '
+      NR == 1 { for (c = 1; c <= NF; ++c) column[$c] = c; next }
+      { steps = $column["step"]; wall = $column["wall_seconds"]
+        newton += $column["newton_iterations"]; linear += $column["linear_iterations"] }
+      END { print steps + 0, wall + 0, newton + 0, linear + 0 }' "$statistics")
+  else
+    steps=0 wall=0 newton=0 linear=0
+  fi
+  if [ -n "$done_line" ]; then
+    # The run's totals include the iterations of attempts that failed and were halved.
+    newton=$(sed -n 's/.*Newton iterations \([0-9]*\) .*/\1/p' <<<"$done_line")
+    linear=$(sed -n 's/.*linear iterations \([0-9]*\) .*/\1/p' <<<"$done_line")
+    halvings=$(sed -n 's/.*step halvings \([0-9]*\).*/\1/p' <<<"$done_line")
+  else
+    halvings=$(grep -c 'retrying with dt' "$log")
+  fi
+  printf '%s\t%s\t%s\t%s\t%s' "${vertices:-0}" "$steps" "$halvings" "$wall" "$newton"
+  printf '\t%s\n' "$linear"
+}
+
+print_table() {
+  [ ${#rows[@]} -gt 0 ] || return 0
+  printf '%s\n' "${rows[@]}" | awk -F'\t' -v smallest="${sizes%% *}" '
+    # value with the given printf format, or "-" where it is not defined.
+    function show(defined, format, value) { return defined ? sprintf(format, value) : "-" }
+    { n[NR] = $1; model[NR] = $2; vertices[NR] = $3; steps[NR] = $4; halvings[NR] = $5
+      wall[NR] = $6; newton[NR] = $7; linear[NR] = $8; status[NR] = $9
+      cost[NR] = ($3 > 0 && $4 > 0) ? 1e6 * $6 / ($3 * $4) : 0
+      if (cost[NR] > 0) { of[$1, $2] = cost[NR]; if (!($2 in first)) first[$2] = cost[NR] } }
+    END {
+      format = "%5s  %-11s %8s %6s %8s %9s %11s %11s %10s %6s %6s  %s\n"
+      printf format, "N", "model", "vertices", "steps", "halvings", "wall_s",
+        "us/vtx-step", "newton/step", "lin/newton", "fem/ms", "vs_N0", "status"
+      for (r = 1; r <= NR; ++r) {
+        mark = status[r] == "ok" ? "" : "*"
+        ms = of[n[r], "mass-spring"]
+        printf format, n[r], model[r], show(vertices[r] > 0, "%d", vertices[r]), steps[r],
+          halvings[r],
+          sprintf("%.2f", wall[r]), show(cost[r] > 0, "%.1f", cost[r]),
+          show(steps[r] > 0, "%.2f" mark, newton[r] / (steps[r] ? steps[r] : 1)),
+          show(newton[r] > 0, "%.2f" mark, linear[r] / (newton[r] ? newton[r] : 1)),
+          show(model[r] == "fem" && cost[r] > 0 && ms > 0, "%.2f", cost[r] / (ms ? ms : 1)),
+          show(cost[r] > 0, "%.2f", cost[r] / (first[model[r]] ? first[model[r]] : 1)),
+          status[r]
+      }
+      printf "(us/vtx-step: wall time of the time loop per vertex and step; fem/ms: the fem\n"
+      printf "cost per vertex-step over the mass-spring one on the same mesh; vs_N0: over the\n"
+      printf "same model'"'"'s at N = %s; *: a failed run'"'"'s accepted steps only)\n", smallest
+    }'
+}
+
+finish() {
+  if [ "$temporary" = true ] && [ "$keep" = false ] && [ "$1" -eq 0 ]; then
+    rm -rf "$output"
+  elif [ "$1" -eq 0 ]; then
+    echo "runs kept in $output" >&2
+  fi
+}
+trap 'finish 1; echo "benchmark-swing: interrupted; runs kept in $output" >&2; exit 130' INT TERM
+
+echo "benchmark-swing: $(basename "$params"), end time $end_time s, sizes $sizes${overrides[*]+, ${overrides[*]}}" >&2
+for n in $sizes; do
+  for model in fem mass-spring; do
+    directory="$output/N-$n/$model"
+    mkdir -p "$directory" || die "cannot create '$directory'"
+    printf 'N = %s, %s ... ' "$n" "$model" >&2
+    "$clothsim" "$params" --set "Mesh/Mesh file=$repository/meshes/swing-$n.msh" \
+      --set "Time/End time=$end_time" --set "Output/Progress=off" "${overrides[@]}" \
+      --set "Model=$model" --output-dir "$directory" >"$directory/run.log" 2>&1
+    code=$?
+    fields=$(measure "$directory")
+    if [ $code -eq 0 ]; then
+      status=ok
+    else
+      reached=$(awk -F, 'NR > 1 { t = $2 } END { print t + 0 }' "$directory/statistics.csv" 2>/dev/null)
+      status="FAILED (exit $code, t = ${reached:-0} s)"
+    fi
+    rows+=("$n"$'\t'"$model"$'\t'"$fields"$'\t'"$status")
+    echo "$status, $(cut -f4 <<<"$fields") s" >&2
+    if [ $code -ne 0 ]; then
+      print_table
+      message=$(grep -E '^clothsim: (error|simulation failed|output failed|interrupted)' \
+        "$directory/run.log" | tail -n 1)
+      die "the run N = $n, $model failed (exit code $code): ${message:-no message}; log:" \
+        "$directory/run.log"
+    fi
+  done
+done
+print_table
+finish 0
