@@ -96,6 +96,20 @@ namespace clothsim
 
 
   void
+  StepperCore::set_increment(const VectorType &u_new, const VectorType &u_old)
+  {
+    if (increment.size() == 0)
+      {
+        model.initialize_ghosted(increment);
+        model.initialize_ghosted(solved_ghosted);
+      }
+    VectorType difference(u_new);
+    difference -= u_old;
+    increment = difference;
+  }
+
+
+  void
   StepperCore::add_dissipation(const VectorType &solved,
                                const StepTerms  &terms,
                                const VectorType &u_new,
@@ -104,14 +118,7 @@ namespace clothsim
     if (!model.has_dissipation())
       return;
     TimerOutput::Scope scope(timer, "energy budget");
-    if (increment.size() == 0)
-      {
-        model.initialize_ghosted(increment);
-        model.initialize_ghosted(solved_ghosted);
-      }
-    VectorType difference(u_new);
-    difference -= u_old;
-    increment      = difference;
+    set_increment(u_new, u_old);
     solved_ghosted = solved;
     dissipated += model.dissipated_work(solved_ghosted, terms, increment);
   }
@@ -123,14 +130,7 @@ namespace clothsim
                                const VectorType          &u_old)
   {
     TimerOutput::Scope scope(timer, "energy budget");
-    if (increment.size() == 0)
-      {
-        model.initialize_ghosted(increment);
-        model.initialize_ghosted(solved_ghosted);
-      }
-    VectorType difference(u_new);
-    difference -= u_old;
-    increment = difference;
+    set_increment(u_new, u_old);
     dissipated += model.work(dissipative_gradient, increment);
   }
 

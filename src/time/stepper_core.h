@@ -171,6 +171,10 @@ namespace clothsim
     double     dissipated = 0.;      // J, work done against damping so far
 
   private:
+    // increment = u_new - u_old, ghosted (the work vectors made on first use).
+    void
+    set_increment(const VectorType &u_new, const VectorType &u_old);
+
     VectorType   increment, solved_ghosted; // ghosted work vectors of add_dissipation
     unsigned int frame_step = 0;            // the step of the last written frame
     bool         any_frame  = false;
