@@ -14,6 +14,20 @@
 
 namespace clothsim::test
 {
+  // A mesh generated from copies of the project's `geo_files` (meshes/; the first is the
+  // mesh's .geo, the others what it includes) in `directory`, emptied first: a fresh .msh
+  // every run, none in the source tree. Returns the .msh path to give as 'Mesh file'.
+  inline std::string
+  scratch_mesh(const std::filesystem::path    &directory,
+               const std::vector<std::string> &geo_files)
+  {
+    std::filesystem::remove_all(directory);
+    std::filesystem::create_directories(directory);
+    for (const std::string &file : geo_files)
+      std::filesystem::copy_file(source_path("meshes/" + file), directory / file);
+    return (directory / geo_files.front()).replace_extension(".msh").string();
+  }
+
   // Checks that every field of `file` (but the columns named in `text_columns`) is a
   // finite number and every row has the header's number of fields. Returns the number of
   // bad fields; prints the first.

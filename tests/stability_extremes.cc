@@ -60,7 +60,6 @@ namespace
   namespace fs = std::filesystem;
 
   const std::string default_prm = source_path("params/default.prm");
-  const std::string sliver_geo  = source_path("meshes/sliver-sheet.geo");
   const fs::path    root        = scratch_directory("clothsim-stability");
   const double      young       = 0.821e6; // Pa, the default
   const double      gravity     = 9.81;    // m/s²
@@ -178,12 +177,8 @@ main(int argc, char **argv)
 
   // 6. The sliver mesh, generated from a copy of the .geo in the scratch directory (a
   //    fresh .msh every run, none in the source tree).
-  const fs::path sliver_directory = root / "sliver-mesh";
-  fs::remove_all(sliver_directory);
-  fs::create_directories(sliver_directory);
-  fs::copy_file(sliver_geo, sliver_directory / "sliver-sheet.geo");
   const std::string sliver_mesh =
-    "Mesh/Mesh file=" + (sliver_directory / "sliver-sheet.msh").string();
+    "Mesh/Mesh file=" + scratch_mesh(root / "sliver-mesh", {"sliver-sheet.geo"});
   pcout << "mesh quality" << std::endl;
   pcout << "  sheet.msh: largest aspect ratio " << largest_aspect_ratio({}) << std::endl;
   passed &= check_above(pcout,

@@ -152,12 +152,8 @@ main(int argc, char **argv)
 
   // The N = 21 mesh, generated from copies of its .geo files in the scratch directory
   // (a fresh .msh every run, none in the source tree).
-  const fs::path mesh_directory = root / "mesh";
-  fs::remove_all(mesh_directory);
-  fs::create_directories(mesh_directory);
-  for (const std::string file : {"swing-21.geo", "swing-grid.geo.inc"})
-    fs::copy_file(source_path("meshes/" + file), mesh_directory / file);
-  const std::string mesh = (mesh_directory / "swing-21.msh").string();
+  const std::string mesh =
+    scratch_mesh(root / "mesh", {"swing-21.geo", "swing-grid.geo.inc"});
 
   const std::vector<Case> cases = {
     {"baseline", "as shipped: D = 1e-5 N m, 0.1 kg/m2, 1/60 s", {}},
