@@ -312,14 +312,12 @@ namespace clothsim
       }
     ++control.halvings;
     ++summary.retries;
-    check_step_floor(control.nominal / std::pow(2., control.halvings),
+    check_step_floor(control.size(),
                      first_step,
                      time,
                      "Newton's failure (" + result.failure + ")");
     pcout << "step " << step + 1 << ": Newton failed at t = " << time_new << " ("
-          << result.failure
-          << "); retrying with dt = " << control.nominal / std::pow(2., control.halvings)
-          << std::endl;
+          << result.failure << "); retrying with dt = " << control.size() << std::endl;
   }
 
 
@@ -364,12 +362,14 @@ namespace clothsim
     const double end = dynamic ? parameters.time.end_time : 1.;
     control.nominal =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
-    first_step                       = control.nominal;
-    const bool   adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;
-    const bool   adaptive            = dynamic && parameters.time.adaptive_time_steps;
-    const double largest_increment   = 4. / parameters.time.load_steps;
-    const double output_interval     = dynamic ? parameters.output.interval : 0.;
-    const double epsilon             = 1e-9 * control.nominal;
+    first_step                     = control.nominal;
+    const bool adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;
+    const bool adaptive            = dynamic && parameters.time.adaptive_time_steps;
+    const bool bdf2_fixed_steps =
+      !adaptive && parameters.time.integrator == Integrator::bdf2;
+    const double largest_increment = 4. / parameters.time.load_steps;
+    const double output_interval   = dynamic ? parameters.output.interval : 0.;
+    const double epsilon           = 1e-9 * control.nominal;
 
     RunSummary summary;
     Progress   progress(std::cout,
@@ -395,15 +395,17 @@ namespace clothsim
     step_times.since_last();
     while (time < end - epsilon)
       {
-        // One nominal step, in 2^k sub-steps if Newton needs smaller ones.
+        // One nominal step, in 2^k sub-steps if Newton needs smaller ones (BDF2 at fixed
+        // steps: k starts one below the last nominal step's).
+        control.carried =
+          bdf2_fixed_steps ? std::max(control.carried + control.halvings, 1u) - 1 : 0;
         control.restart(time, control.nominal, end);
         control.next                 = control.nominal;
         unsigned int last_iterations = 0;
         while (time < control.target - epsilon)
           {
             stop_if_interrupted(step, time);
-            const double dt = std::min(control.target - time,
-                                       control.nominal / std::pow(2., control.halvings));
+            const double dt = std::min(control.target - time, control.size());
             const double time_new =
               (control.target - time - dt < epsilon) ? control.target : time + dt;
 

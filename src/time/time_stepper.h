@@ -23,6 +23,7 @@
 #include "time/stepper_core.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace clothsim
 {
@@ -105,6 +106,10 @@ namespace clothsim
       double       next     = 0.;
       unsigned int halvings = 0;
       unsigned int rejected = 0;
+      // BDF2 at fixed steps: halvings carried over from the last nominal step, one fewer
+      // (the step at most doubles: variable-step BDF2 is zero-stable only for step
+      // ratios below 1 + √2).
+      unsigned int carried = 0;
 
       // A new nominal step of the given size from `time`, no halvings.
       void
@@ -113,6 +118,14 @@ namespace clothsim
         nominal  = size;
         target   = std::min(time + size, end);
         halvings = 0;
+      }
+
+      // The sub-step size: the nominal step halved for the failures of this nominal
+      // step and the carried halvings.
+      double
+      size() const
+      {
+        return nominal / std::pow(2., carried + halvings);
       }
     };
 
