@@ -42,9 +42,9 @@ namespace clothsim
 
   struct MaterialParameters
   {
-    double      stretch_stiffness; // E h, N/m (derived when given as E and thickness)
-    double      poisson_ratio;     // dimensionless
-    double      areal_density;     // kg/m²
+    double      stretch_stiffness;   // E h, N/m (derived when given as E and thickness)
+    double      poisson_ratio;       // dimensionless
+    double      areal_density;       // kg/m²
     bool        lumped_mass;
     bool        bending;           // assemble the bending energy
     double      bending_rigidity;  // D, N·m (derived when given as E and thickness)
@@ -187,9 +187,10 @@ namespace clothsim
     unsigned int max_iterations;
     double       absolute_tolerance; // N
     double       relative_tolerance;
-    std::string  line_search;            // "polynomial", "backtrack", "full step"
-    std::string  tangent;                // "adaptive", "projected", "exact"
-    double       displacement_tolerance; // m
+    std::string  line_search;               // "polynomial", "backtrack", "full step"
+    std::string  tangent;                   // "adaptive", "projected", "exact"
+    double       displacement_tolerance;    // m
+    double       truncation_error_fraction; // of the step's local error estimate
     bool         print_iterations;
 
     static void

@@ -76,6 +76,16 @@ namespace clothsim
       "vertex coordinate by more than this (m; director angles do not count). 0 "
       "disables this criterion.");
     prm.declare_entry(
+      "Truncation error fraction",
+      "0",
+      Patterns::Double(0., 1.),
+      "... or, in a dynamic run, when a full Newton step moves no vertex "
+      "coordinate by more than this fraction of the time step's estimated "
+      "local truncation error at the new iterate (m; the estimate of 'Time/"
+      "Adaptive time steps', computed for every step): iterating further "
+      "changes the answer by less than the time discretisation does. 0: off; "
+      "0.01 to 0.1 is customary (Hairer & Wanner, Solving ODEs II, IV.8).");
+    prm.declare_entry(
       "Print iterations",
       "false",
       Patterns::Bool(),
@@ -101,19 +111,20 @@ namespace clothsim
   {
     prm.enter_subsection("Nonlinear solver");
     const std::string method_name = prm.get("Method");
-    method                 = method_name == "single step"      ? NewtonMethod::single_step
-                             : method_name == "inexact newton" ? NewtonMethod::inexact
-                             : method_name == "modified newton" ? NewtonMethod::modified
-                                                                : NewtonMethod::full;
-    jacobian_reuse         = prm.get_integer("Jacobian reuse");
-    forcing_term_maximum   = prm.get_double("Forcing term maximum");
-    max_iterations         = prm.get_integer("Maximum iterations");
-    absolute_tolerance     = prm.get_double("Absolute tolerance");
-    relative_tolerance     = prm.get_double("Relative tolerance");
-    line_search            = prm.get("Line search");
-    displacement_tolerance = prm.get_double("Displacement tolerance");
-    print_iterations       = prm.get_bool("Print iterations");
-    tangent                = prm.get("Tangent");
+    method                    = method_name == "single step" ? NewtonMethod::single_step
+                                : method_name == "inexact newton"  ? NewtonMethod::inexact
+                                : method_name == "modified newton" ? NewtonMethod::modified
+                                                                   : NewtonMethod::full;
+    jacobian_reuse            = prm.get_integer("Jacobian reuse");
+    forcing_term_maximum      = prm.get_double("Forcing term maximum");
+    max_iterations            = prm.get_integer("Maximum iterations");
+    absolute_tolerance        = prm.get_double("Absolute tolerance");
+    relative_tolerance        = prm.get_double("Relative tolerance");
+    line_search               = prm.get("Line search");
+    displacement_tolerance    = prm.get_double("Displacement tolerance");
+    truncation_error_fraction = prm.get_double("Truncation error fraction");
+    print_iterations          = prm.get_bool("Print iterations");
+    tangent                   = prm.get("Tangent");
     prm.leave_subsection();
   }
 

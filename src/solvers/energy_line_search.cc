@@ -59,7 +59,13 @@ namespace clothsim
               }
           }
       }
+    // No decrease at any step: fail the solve at once (NOX fails on a zero step), back at
+    // the old iterate. Continuing from a tiny step would only repeat the same direction
+    // until the iteration cap (measured: 175 wasted iterations on a folding step).
     n_cuts += max_halvings;
+    step = 0.;
+    group.computeX(old_group, direction, step);
+    group.computeF();
     return false;
   }
 } // namespace clothsim

@@ -5,8 +5,9 @@
 // 1e-4, step halving (Nocedal & Wright, "Numerical Optimization", alg. 3.1). Near the
 // solution the decrease α F·d falls below the round-off of Φ itself (|Φ| ε); there the
 // step is judged by the residual norm instead, so Newton's last iterations are not cut by
-// noise. A later contact model can cap α here (continuous collision check) before the
-// search starts.
+// noise. When no step of the 30 halvings decreases Φ, the search fails with step 0 and
+// Newton with it (the time step is then cut). A later contact model can cap α here
+// (continuous collision check) before the search starts.
 
 #include <NOX_LineSearch_Generic.H>
 #include <NOX_LineSearch_UserDefinedFactory.H>

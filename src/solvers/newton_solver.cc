@@ -300,7 +300,8 @@ namespace clothsim
 
     // Converged when a full Newton step (no line-search cut) moved no dof by more than
     // the tolerance (m): the next correction is then far smaller (quadratic convergence)
-    // or at least smaller (linear). A cut step proves nothing, so it never counts.
+    // or at least smaller (linear). A cut step proves nothing, so it never counts. The
+    // tolerance is the larger of the fixed one and the problem's at the new iterate.
     class SmallFullStep : public NOX::StatusTest::Generic
     {
     public:
@@ -322,8 +323,16 @@ namespace clothsim
         auto update = solver.getSolutionGroup().getX().clone(NOX::DeepCopy);
         update->update(-1., solver.getPreviousSolutionGroup().getX(), 1.);
         copy(epetra(*update), context.update);
-        if (context.problem.update_size(context.update) < tolerance)
+        const double size = context.problem.update_size(context.update);
+        if (size < tolerance)
           status = NOX::StatusTest::Converged;
+        else
+          {
+            copy(epetra(solver.getSolutionGroup().getX()), context.iterate);
+            last_tolerance = context.problem.update_tolerance(context.iterate);
+            if (size < last_tolerance)
+              status = NOX::StatusTest::Converged;
+          }
         return status;
       }
 
@@ -338,11 +347,13 @@ namespace clothsim
       {
         for (int i = 0; i < indent; ++i)
           stream << ' ';
-        return stream << status << "full Newton step below " << tolerance << " m\n";
+        return stream << status << "full Newton step below "
+                      << std::max(tolerance, last_tolerance) << " m\n";
       }
 
     private:
       const double                tolerance;
+      double                      last_tolerance = 0.;
       Context                    &context;
       NOX::StatusTest::StatusType status = NOX::StatusTest::Unevaluated;
     };
@@ -499,7 +510,7 @@ namespace clothsim
     converged->addStatusTest(residual_small);
     const double step_tolerance =
       std::max(parameters.displacement_tolerance, minimum_displacement_tolerance);
-    if (step_tolerance > 0.)
+    if (step_tolerance > 0. || parameters.truncation_error_fraction > 0.)
       converged->addStatusTest(Teuchos::rcp(new SmallFullStep(step_tolerance, context)));
     auto max_iterations = Teuchos::rcp(
       new NOX::StatusTest::MaxIters(single_step ? 1 : parameters.max_iterations));

@@ -52,6 +52,15 @@ namespace clothsim
     {
       return update.linfty_norm();
     }
+
+    // A tolerance for that test which depends on the iterate u (m; 0: none). The larger
+    // of it and the fixed 'Displacement tolerance' applies. A time step returns a
+    // fraction of its estimated truncation error at u.
+    virtual double
+    update_tolerance(const TrilinosWrappers::MPI::Vector & /*u*/) const
+    {
+      return 0.;
+    }
   };
 
   struct NewtonResult

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
@@ -58,11 +59,25 @@ namespace clothsim
         return Utilities::MPI::max(largest, model.get_communicator());
       }
 
+      // Newton's step test tolerates updates up to this function of the iterate (m).
+      void
+      set_update_tolerance(std::function<double(const VectorType &)> tolerance)
+      {
+        iterate_tolerance = std::move(tolerance);
+      }
+
+      double
+      update_tolerance(const VectorType &u) const override
+      {
+        return iterate_tolerance ? iterate_tolerance(u) : 0.;
+      }
+
     private:
-      const ModelInterface &model;
-      StepTerms             terms;
-      TimerOutput          &timer;
-      VectorType            ghosted;
+      std::function<double(const VectorType &)> iterate_tolerance;
+      const ModelInterface                     &model;
+      StepTerms                                 terms;
+      TimerOutput                              &timer;
+      VectorType                                ghosted;
     };
   } // namespace
 
@@ -184,6 +199,15 @@ namespace clothsim
     tangent_weights = {terms.inertia_weight, terms.damping_weight};
     const double newton_floor =
       dynamic && parameters.time.adaptive_time_steps ? 0.1 * step_tolerance(dt, 0.) : 0.;
+    // 'Truncation error fraction': an update below that share of the step's own error
+    // estimate at the iterate changes the answer by less than the step's discretisation
+    // does (Hairer & Wanner, "Solving ODEs II", IV.8: stop Newton at a fraction of the
+    // local error).
+    const double fraction = parameters.nonlinear_solver.truncation_error_fraction;
+    if (dynamic && fraction > 0.)
+      problem.set_update_tolerance([this, dt, fraction, midpoint](const VectorType &u) {
+        return fraction * error_estimate(dt, u, midpoint).first;
+      });
     attempt.newton = newton.solve(problem, u_new, newton_floor);
     if (!attempt.newton.converged)
       return attempt;
@@ -220,7 +244,7 @@ namespace clothsim
         return attempt;
       }
     if (dynamic)
-      std::tie(attempt.error_estimate, attempt.order) = error_estimate(dt);
+      std::tie(attempt.error_estimate, attempt.order) = error_estimate(dt, u_new);
     return attempt;
   }
 
@@ -260,7 +284,9 @@ namespace clothsim
 
 
   std::pair<double, unsigned int>
-  TimeStepper::error_estimate(const double dt) const
+  TimeStepper::error_estimate(const double      dt,
+                              const VectorType &u,
+                              const bool        u_is_midpoint) const
   {
     const Integrator   integrator = parameters.time.integrator;
     const unsigned int order =
@@ -285,11 +311,14 @@ namespace clothsim
           }
         a_weight = 0.5 * dt * dt / previous_step;
       }
-    double largest = 0.;
+    // The end state u₊: u itself, or 2 u - u_n from the midpoint rule's midpoint.
+    const bool midpoint = u_is_midpoint && integrator == Integrator::implicit_midpoint;
+    double     largest  = 0.;
     for (const types::global_dof_index i : model.displacement_dofs())
       {
         const double predicted = u_n[i] + dt * v_n[i] + a_weight * (v_n[i] - v_nm1[i]);
-        largest                = std::max(largest, std::abs(u_new[i] - predicted));
+        const double end       = midpoint ? 2. * u[i] - u_n[i] : u[i];
+        largest                = std::max(largest, std::abs(end - predicted));
       }
     return {kappa * Utilities::MPI::max(largest, model.get_communicator()), order};
   }

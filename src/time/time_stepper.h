@@ -88,8 +88,11 @@ namespace clothsim
     // acceleration a = (v - v₋)/dt₋ from the last step, second order
     // κ |u₊ - u - dt v - dt²/2 a| with κ from the step ratio (at constant steps 1/6 for
     // the midpoint rule, error dt³/12 u⁽³⁾, and 8/7 for BDF2, error 2/9 dt³ u⁽³⁾).
+    // `u` is the end state, or with `u_is_midpoint` the midpoint rule's unknown.
     std::pair<double, unsigned int>
-    error_estimate(const double dt) const;
+    error_estimate(const double      dt,
+                   const VectorType &u,
+                   const bool        u_is_midpoint = false) const;
 
     // The local error a step of size dt may make (m): 'Error tolerance' + 'Relative
     // error tolerance' x the largest displacement, or with an accuracy target T_a the
