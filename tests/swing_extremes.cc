@@ -47,9 +47,10 @@
 //    step ratios below 1 + √2.
 // The outcome of each case (steps, step halvings, Newton iterations per step, the free
 // corner's lowest point, energy growth, run time) is printed in a table at the end.
-// About 30 s on one core in Release (4.5 to 8.2 Newton iterations per step with the
-// scene's 'Truncation error fraction' of 0.03; 8 to 19 with the fixed tolerance alone;
-// one step halving, after a failed line search, at ten times the density).
+// About 30 s on one core in Release (4.3 to 8.2 Newton iterations per step with the
+// scene's 'Truncation error fraction' of 0.03, 8 to 19 with the fixed tolerance alone;
+// no step halvings since the director tilt is taken modulo 2π, before which a failed
+// line search halved one step at ten times the density).
 
 #include "extreme_runs.h"
 

@@ -13,7 +13,8 @@
 //   unnormalised normal       N = (x1 - x0) × (x2 - x0),  n = N / |N|
 //   altitude                  h_i = |N| / ℓ_i
 //   outward co-normal         μ_i = e_i × n / ℓ_i
-//   director tilt             δ_i = atan2(r_i·μ_i, r_i·n) + s_i ψ_i
+//   director tilt             δ_i = atan2(r_i·μ_i, r_i·n) + s_i ψ_i   (mod 2π, in [-π,
+//   π])
 // where r_i is the edge's reference vector (the director at ψ = 0; only its part normal
 // to the edge matters, so δ_i = atan2(N·(r_i × e_i)/ℓ_i, N·r_i) needs no projection) and
 // s_i = ±1 says whether the edge's global direction is e_i (+1) or -e_i (-1): rotating
