@@ -42,9 +42,9 @@ namespace clothsim
 
   struct MaterialParameters
   {
-    double      stretch_stiffness;   // E h, N/m (derived when given as E and thickness)
-    double      poisson_ratio;       // dimensionless
-    double      areal_density;       // kg/m²
+    double      stretch_stiffness; // E h, N/m (derived when given as E and thickness)
+    double      poisson_ratio;     // dimensionless
+    double      areal_density;     // kg/m²
     bool        lumped_mass;
     bool        bending;           // assemble the bending energy
     double      bending_rigidity;  // D, N·m (derived when given as E and thickness)
