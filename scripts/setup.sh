@@ -4,8 +4,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# libopenblas0-serial: an optimised BLAS for MUMPS' dense kernels (Debian's alternatives
+# pick it over the reference BLAS; factorisations twice as fast).
 packages=(cmake g++ make libdeal.ii-dev trilinos-all-dev libopenmpi-dev openmpi-bin gmsh
-          libgmsh-dev libvtk9-dev zlib1g-dev)
+          libgmsh-dev libvtk9-dev zlib1g-dev libopenblas0-serial)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -138,15 +138,15 @@ namespace clothsim
       "cg",
       Patterns::Selection(solver_methods),
       "Krylov method for each Newton step: 'cg' (needs the projected tangent), "
-      "'gmres', or 'direct' (a sparse LU factorisation, see 'Direct solver').");
+      "'gmres', or 'direct' (a sparse factorisation, see 'Direct solver').");
     prm.declare_entry(
       "Direct solver",
       "mumps",
       Patterns::Selection("mumps|klu"),
-      "Sparse direct solver behind 'Method = direct' (through Amesos): 'mumps' "
-      "(multifrontal, nested-dissection ordering, distributed; fast on large "
-      "meshes) or 'klu' (serial, no fill-reducing ordering for 2D meshes; small "
-      "systems).");
+      "Sparse direct solver behind 'Method = direct': 'mumps' (multifrontal "
+      "symmetric LDLᵀ with METIS nested-dissection ordering, distributed over the "
+      "MPI ranks; fast on large meshes) or 'klu' (LU through Amesos, serial, no "
+      "fill-reducing ordering for 2D meshes; small systems).");
     prm.declare_entry(
       "Preconditioner",
       "amg",

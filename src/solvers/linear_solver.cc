@@ -37,27 +37,31 @@ namespace clothsim
   {
     if (parameters.method == "direct")
       {
-        // The tangent is symmetric (constraints are applied symmetrically): LDLᵀ.
+        if (parameters.direct_solver == "mumps")
+          {
+            // The tangent is symmetric (constraints are applied symmetrically): LDLᵀ.
+            if (!mumps)
+              mumps = std::make_unique<MumpsFactorization>(
+                matrix.get_mpi_communicator(), MumpsFactorization::Symmetry::indefinite);
+            factorization_ok = mumps->factorize(matrix.trilinos_matrix());
+            if (!factorization_ok)
+              last_failure = mumps->failure();
+            return;
+          }
         if (!direct_solver)
           {
             direct_problem = std::make_unique<Epetra_LinearProblem>();
             direct_problem->SetOperator(
               const_cast<Epetra_CrsMatrix *>(&matrix.trilinos_matrix()));
             Amesos factory;
-            direct_solver.reset(factory.Create(parameters.direct_solver == "mumps"
-                                                 ? "Amesos_Mumps"
-                                                 : "Amesos_Klu",
-                                               *direct_problem));
-            AssertThrow(direct_solver != nullptr,
-                        ExcMessage("this Trilinos has no " + parameters.direct_solver));
-            Teuchos::ParameterList amesos_parameters;
-            if (parameters.direct_solver == "mumps")
-              amesos_parameters.set("MatrixProperty", "symmetric");
-            direct_solver->SetParameters(amesos_parameters);
+            direct_solver.reset(factory.Create("Amesos_Klu", *direct_problem));
+            AssertThrow(direct_solver != nullptr, ExcMessage("this Trilinos has no KLU"));
             AssertThrow(direct_solver->SymbolicFactorization() == 0,
                         ExcMessage("symbolic factorisation failed"));
           }
         factorization_ok = direct_solver->NumericFactorization() == 0;
+        if (!factorization_ok)
+          last_failure = "the direct solver's factorisation failed";
         return;
       }
     // Aggregates built from an early tangent (the unstressed sheet has no out-of-plane
@@ -153,14 +157,19 @@ namespace clothsim
       {
         if (parameters.method == "direct")
           {
-            Assert(direct_problem->GetOperator() == &matrix.trilinos_matrix(),
-                   ExcInternalError());
             iterations = 1;
             if (!factorization_ok)
+              return false; // last_failure says why
+            if (mumps)
               {
-                last_failure = "the direct solver's factorisation failed";
-                return false;
+                const bool solved =
+                  mumps->solve(*b.trilinos_vector()(0), *x.trilinos_vector()(0));
+                if (!solved)
+                  last_failure = mumps->failure();
+                return solved;
               }
+            Assert(direct_problem->GetOperator() == &matrix.trilinos_matrix(),
+                   ExcInternalError());
             direct_problem->SetLHS(&x.trilinos_vector());
             direct_problem->SetRHS(const_cast<Epetra_MultiVector *>(
               static_cast<const Epetra_MultiVector *>(&b.trilinos_vector())));

@@ -1,7 +1,8 @@
 #pragma once
 
 // Linear solves of the Newton steps: CG or GMRES preconditioned by ML algebraic multigrid
-// or Jacobi, or a direct solve (Amesos KLU), as the parameter file selects.
+// or Jacobi, or a direct solve (MUMPS' LDLᵀ, or Amesos KLU), as the parameter file
+// selects.
 
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -9,6 +10,7 @@
 
 #include "io/parameters.h"
 #include "solvers/block_preconditioner.h"
+#include "solvers/mumps_factorization.h"
 
 #include <Amesos_BaseSolver.h>
 #include <Epetra_LinearProblem.h>
@@ -93,7 +95,9 @@ namespace clothsim
     // With director angles: AMG on the displacement block, Jacobi on the angles.
     std::unique_ptr<BlockPreconditioner> block_preconditioner;
     // Direct solver: the symbolic factorisation of the first tangent serves all later
-    // ones (same sparsity); each new tangent is factorised numerically once.
+    // ones (same sparsity); each new tangent is factorised numerically once. MUMPS
+    // directly (symmetric), KLU through Amesos.
+    std::unique_ptr<MumpsFactorization>   mumps;
     std::unique_ptr<Epetra_LinearProblem> direct_problem;
     std::unique_ptr<Amesos_BaseSolver>    direct_solver;
     // CG iterations of the last solve, and of the first solve after the aggregates were

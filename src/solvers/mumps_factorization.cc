@@ -1,0 +1,186 @@
+#include "solvers/mumps_factorization.h"
+
+#include <dmumps_c.h>
+
+#include <algorithm>
+
+namespace clothsim
+{
+  struct MumpsFactorization::Instance
+  {
+    DMUMPS_STRUC_C id{};
+  };
+
+
+  namespace
+  {
+    // MUMPS' arrays are 1-based in its documentation: ICNTL(k) is icntl[k - 1].
+    constexpr int
+    at(const int k)
+    {
+      return k - 1;
+    }
+
+    std::string
+    mumps_error_text(const int code)
+    {
+      switch (code)
+        {
+          case -10:
+            return "the matrix is numerically singular";
+          case -13:
+            return "MUMPS could not allocate memory";
+          case -8:
+          case -9:
+          case -14:
+          case -15:
+          case -17:
+          case -20:
+            return "MUMPS' workspace was too small";
+          default:
+            return "see the MUMPS users' guide";
+        }
+    }
+  } // namespace
+
+
+  MumpsFactorization::MumpsFactorization(const MPI_Comm communicator,
+                                         const Symmetry symmetry,
+                                         const int      ordering)
+    : communicator(communicator)
+    , instance(std::make_unique<Instance>())
+  {
+    instance->id.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(communicator));
+    instance->id.par          = 1; // rank 0 works too
+    instance->id.sym          = symmetry == Symmetry::positive_definite ? 1 : 2;
+    instance->id.job          = -1;
+    dmumps_c(&instance->id);
+    instance->id.icntl[at(1)]  = -1; // no messages
+    instance->id.icntl[at(2)]  = -1;
+    instance->id.icntl[at(3)]  = -1;
+    instance->id.icntl[at(4)]  = 0;
+    instance->id.icntl[at(5)]  = 0; // assembled matrix,
+    instance->id.icntl[at(18)] = 3; // distributed by rows as the caller's
+    instance->id.icntl[at(7)]  = ordering;
+    instance->id.icntl[at(28)] = 1; // sequential analysis: ICNTL(7) chooses the ordering
+    instance->id.icntl[at(20)] = 0; // dense right-hand side on rank 0,
+    instance->id.icntl[at(21)] = 0; // solution on rank 0
+  }
+
+
+  MumpsFactorization::~MumpsFactorization()
+  {
+    instance->id.job = -2;
+    dmumps_c(&instance->id);
+  }
+
+
+  bool
+  MumpsFactorization::call(const int job, const char *phase)
+  {
+    // Workspace estimates of the analysis can be short after pivoting (SYM = 2): grow
+    // the relaxation ICNTL(14) (percent) and repeat, as the MUMPS guide advises.
+    for (int attempt = 0;; ++attempt)
+      {
+        instance->id.job = job;
+        dmumps_c(&instance->id);
+        const int code = instance->id.infog[at(1)];
+        if (code >= 0)
+          return true;
+        const bool workspace = code == -8 || code == -9 || code == -14 || code == -15 ||
+                               code == -17 || code == -20;
+        if (!workspace || attempt == 4)
+          {
+            last_failure = std::string("MUMPS ") + phase +
+                           " failed: INFOG(1) = " + std::to_string(code) +
+                           ", INFOG(2) = " + std::to_string(instance->id.infog[at(2)]) +
+                           " (" + mumps_error_text(code) + ")";
+            return false;
+          }
+        instance->id.icntl[at(14)] = 2 * std::max(instance->id.icntl[at(14)], 20);
+      }
+  }
+
+
+  bool
+  MumpsFactorization::factorize(const Epetra_CrsMatrix &matrix)
+  {
+    // The upper triangle of the owned rows, in row order (the same entries every time:
+    // the sparsity does not change between analyses).
+    values.clear();
+    const bool first = !analysed;
+    if (first)
+      {
+        rows.clear();
+        columns.clear();
+      }
+    for (int row = 0; row < matrix.NumMyRows(); ++row)
+      {
+        int     n_entries = 0;
+        double *row_values;
+        int    *row_columns;
+        matrix.ExtractMyRowView(row, n_entries, row_values, row_columns);
+        const int global_row = matrix.RowMap().GID(row);
+        for (int j = 0; j < n_entries; ++j)
+          {
+            const int global_column = matrix.ColMap().GID(row_columns[j]);
+            if (global_column < global_row)
+              continue;
+            values.push_back(row_values[j]);
+            if (first)
+              {
+                rows.push_back(global_row + 1);
+                columns.push_back(global_column + 1);
+              }
+          }
+      }
+    if (values.size() != rows.size())
+      {
+        last_failure = "the matrix's sparsity changed after MUMPS analysed it";
+        return false;
+      }
+    instance->id.a_loc = values.data();
+    if (first)
+      {
+        instance->id.n       = matrix.NumGlobalRows();
+        instance->id.nnz_loc = static_cast<MUMPS_INT8>(rows.size());
+        instance->id.irn_loc = rows.data();
+        instance->id.jcn_loc = columns.data();
+        if (!call(1, "analysis"))
+          return false;
+        analysed = true;
+
+        const int n_global = matrix.NumGlobalRows();
+        int       rank     = 0;
+        MPI_Comm_rank(communicator, &rank);
+        host_map    = std::make_unique<Epetra_Map>(n_global,
+                                                rank == 0 ? n_global : 0,
+                                                0,
+                                                matrix.Comm());
+        to_host     = std::make_unique<Epetra_Import>(*host_map, matrix.RowMap());
+        host_vector = std::make_unique<Epetra_Vector>(*host_map);
+      }
+    return call(2, "factorisation");
+  }
+
+
+  bool
+  MumpsFactorization::solve(const Epetra_Vector &b, Epetra_Vector &x)
+  {
+    host_vector->Import(b, *to_host, Insert);
+    instance->id.rhs  = host_vector->Values();
+    instance->id.nrhs = 1;
+    instance->id.lrhs = instance->id.n;
+    if (!call(3, "solve"))
+      return false;
+    x.Export(*host_vector, *to_host, Insert);
+    return true;
+  }
+
+
+  int
+  MumpsFactorization::negative_pivots() const
+  {
+    return instance->id.infog[at(12)];
+  }
+} // namespace clothsim

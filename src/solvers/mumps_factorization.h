@@ -1,0 +1,80 @@
+#pragma once
+
+// LDLᵀ factorisation of a symmetric sparse matrix by MUMPS (Amestoy et al., SIAM J.
+// Matrix Anal. Appl. 23, 2001), called directly. Amesos_Mumps always hands MUMPS the
+// whole matrix as unsymmetric (SYM = 0, an LU factorisation): here MUMPS gets the upper
+// triangle with SYM = 1 (Cholesky-like LDLᵀ without pivoting, for SPD matrices) or
+// SYM = 2 (LDLᵀ with 1x1 and 2x2 pivots, any symmetric matrix), about half the work and
+// memory of LU. The rows stay distributed as the matrix is (MUMPS' distributed assembled
+// input); right-hand sides are gathered on rank 0, where MUMPS solves, and scattered
+// back.
+
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_Import.h>
+#include <Epetra_Map.h>
+#include <Epetra_Vector.h>
+#include <mpi.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace clothsim
+{
+  class MumpsFactorization
+  {
+  public:
+    enum class Symmetry
+    {
+      positive_definite, // SYM = 1
+      indefinite         // SYM = 2
+    };
+
+    // `ordering`: MUMPS' fill-reducing ordering, ICNTL(7) (0 AMD, 3 SCOTCH, 4 PORD,
+    // 5 METIS, 7 automatic).
+    MumpsFactorization(MPI_Comm communicator, Symmetry symmetry, int ordering = 5);
+    ~MumpsFactorization();
+    MumpsFactorization(const MumpsFactorization &) = delete;
+    MumpsFactorization &
+    operator=(const MumpsFactorization &) = delete;
+
+    // Factorises `matrix` (collective). The first call also analyses its sparsity, which
+    // later calls must share. Returns false with failure() set if MUMPS fails (e.g. a
+    // zero pivot, or a non-positive one with Symmetry::positive_definite).
+    bool
+    factorize(const Epetra_CrsMatrix &matrix);
+
+    // x = A⁻¹ b with the last factorisation (collective; b and x on the matrix's rows).
+    bool
+    solve(const Epetra_Vector &b, Epetra_Vector &x);
+
+    // Negative pivots of the last factorisation: with SYM = 2 the number of negative
+    // eigenvalues (Sylvester's law of inertia).
+    int
+    negative_pivots() const;
+
+    const std::string &
+    failure() const
+    {
+      return last_failure;
+    }
+
+  private:
+    bool
+    call(int job, const char *phase);
+
+    MPI_Comm communicator;
+    struct Instance; // MUMPS' DMUMPS_STRUC_C
+    std::unique_ptr<Instance> instance;
+    bool                      analysed = false;
+    // The upper triangle of the owned rows, row by row: 1-based global indices (fixed
+    // by the analysis) and the values of the matrix factorised last.
+    std::vector<int>    rows, columns;
+    std::vector<double> values;
+    // Right-hand side and solution, all rows on rank 0.
+    std::unique_ptr<Epetra_Map>    host_map;
+    std::unique_ptr<Epetra_Import> to_host;
+    std::unique_ptr<Epetra_Vector> host_vector;
+    std::string                    last_failure;
+  };
+} // namespace clothsim

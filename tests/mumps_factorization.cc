@@ -1,0 +1,142 @@
+// The direct MUMPS LDLᵀ (solvers/mumps_factorization.h) on tridiagonal Toeplitz matrices
+// T = a I + b (shift up + shift down), whose eigenvalues are known in closed form,
+//   λ_j = a + 2 b cos(j π / (n + 1)),  j = 1 .. n,
+// on one rank or distributed over several: the solution of T x = T x* to round-off, the
+// inertia (negative pivots = negative eigenvalues), a refactorisation with new values on
+// the same sparsity, and a clear failure on a singular matrix.
+
+#include <deal.II/base/mpi.h>
+
+#include "solvers/mumps_factorization.h"
+
+#include <Epetra_MpiComm.h>
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+using namespace dealii;
+using namespace clothsim;
+
+namespace
+{
+  unsigned int failures = 0;
+
+  void
+  check(const bool ok, const std::string &what, const int rank)
+  {
+    if (rank == 0)
+      std::cout << (ok ? "ok      " : "FAILED  ") << what << std::endl;
+    if (!ok)
+      ++failures;
+  }
+
+  std::string
+  sci(const double value)
+  {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+  }
+
+  // T = a I + b (shift up + shift down) on `map`; `zero_row` (if >= 0) left empty but for
+  // a structural zero on the diagonal (a singular matrix with the same sparsity).
+  Epetra_CrsMatrix
+  toeplitz(const Epetra_Map &map, const double a, const double b, const int zero_row = -1)
+  {
+    Epetra_CrsMatrix matrix(Copy, map, 3);
+    const int        n = map.NumGlobalElements();
+    for (int local = 0; local < map.NumMyElements(); ++local)
+      {
+        const int i = map.GID(local);
+        for (int j = std::max(i - 1, 0); j <= std::min(i + 1, n - 1); ++j)
+          {
+            double value = (i == j ? a : b);
+            if (i == zero_row || j == zero_row)
+              value = 0.;
+            matrix.InsertGlobalValues(i, 1, &value, &j);
+          }
+      }
+    matrix.FillComplete();
+    return matrix;
+  }
+
+  int
+  negative_eigenvalues(const int n, const double a, const double b)
+  {
+    int count = 0;
+    for (int j = 1; j <= n; ++j)
+      if (a + 2. * b * std::cos(j * M_PI / (n + 1)) < 0.)
+        ++count;
+    return count;
+  }
+
+  // Relative error of the solution of T x = T x* for x*_i = sin(i + 1).
+  double
+  solution_error(MumpsFactorization &mumps, const Epetra_CrsMatrix &matrix)
+  {
+    const Epetra_Map &map = matrix.RowMap();
+    Epetra_Vector     exact(map), rhs(map), x(map);
+    for (int local = 0; local < map.NumMyElements(); ++local)
+      exact[local] = std::sin(map.GID(local) + 1.);
+    matrix.Multiply(false, exact, rhs);
+    if (!mumps.solve(rhs, x))
+      return 1e300;
+    x.Update(-1., exact, 1.);
+    double error = 0., norm = 0.;
+    x.Norm2(&error);
+    exact.Norm2(&norm);
+    return error / norm;
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  const int      rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  Epetra_MpiComm comm(MPI_COMM_WORLD);
+  const int      n = 1000;
+  Epetra_Map     map(n, 0, comm);
+
+  {
+    // Indefinite: a = 0.3, b = 1 has eigenvalues on both sides of zero.
+    const Epetra_CrsMatrix matrix = toeplitz(map, 0.3, 1.);
+    MumpsFactorization mumps(MPI_COMM_WORLD, MumpsFactorization::Symmetry::indefinite);
+    check(mumps.factorize(matrix), "indefinite T factorises", rank);
+    const double error = solution_error(mumps, matrix);
+    check(error < 1e-10, "indefinite T: relative error " + sci(error), rank);
+    const int expected = negative_eigenvalues(n, 0.3, 1.);
+    check(mumps.negative_pivots() == expected,
+          "inertia: " + std::to_string(mumps.negative_pivots()) +
+            " negative pivots, negative eigenvalues " + std::to_string(expected),
+          rank);
+
+    // New values, same sparsity: the analysis is kept.
+    const Epetra_CrsMatrix shifted = toeplitz(map, 2.5, -1.);
+    check(mumps.factorize(shifted), "refactorisation with new values", rank);
+    const double shifted_error = solution_error(mumps, shifted);
+    check(shifted_error < 1e-10,
+          "refactorised T: relative error " + sci(shifted_error),
+          rank);
+    check(mumps.negative_pivots() == 0, "positive definite T: no negative pivot", rank);
+  }
+  {
+    const Epetra_CrsMatrix matrix = toeplitz(map, 2.5, -1.);
+    MumpsFactorization     mumps(MPI_COMM_WORLD,
+                             MumpsFactorization::Symmetry::positive_definite);
+    check(mumps.factorize(matrix), "SPD T factorises (SYM = 1)", rank);
+    const double error = solution_error(mumps, matrix);
+    check(error < 1e-10, "SPD T: relative error " + sci(error), rank);
+  }
+  {
+    const Epetra_CrsMatrix matrix = toeplitz(map, 0.3, 1., n / 2);
+    MumpsFactorization mumps(MPI_COMM_WORLD, MumpsFactorization::Symmetry::indefinite);
+    const bool         factorized = mumps.factorize(matrix);
+    check(!factorized && mumps.failure().find("singular") != std::string::npos,
+          "singular T fails: " + mumps.failure(),
+          rank);
+  }
+  return failures == 0 ? 0 : 1;
+}
