@@ -105,39 +105,49 @@ namespace clothsim
   bool
   MumpsFactorization::factorize(const Epetra_CrsMatrix &matrix)
   {
-    // The upper triangle of the owned rows, in row order (the same entries every time:
-    // the sparsity does not change between analyses).
-    values.clear();
+    // The upper triangle of the owned rows, in row order: which entries of the row
+    // views belong to it is found once (the sparsity does not change after the analysis).
     const bool first = !analysed;
     if (first)
       {
         rows.clear();
         columns.clear();
+        upper.clear();
+        for (int row = 0; row < matrix.NumMyRows(); ++row)
+          {
+            int     n_entries = 0;
+            double *row_values;
+            int    *row_columns;
+            matrix.ExtractMyRowView(row, n_entries, row_values, row_columns);
+            const int global_row = matrix.RowMap().GID(row);
+            for (int j = 0; j < n_entries; ++j)
+              {
+                const int global_column = matrix.ColMap().GID(row_columns[j]);
+                upper.push_back(global_column >= global_row);
+                if (upper.back())
+                  {
+                    rows.push_back(global_row + 1);
+                    columns.push_back(global_column + 1);
+                  }
+              }
+          }
+        values.resize(rows.size());
       }
+    if (static_cast<std::size_t>(matrix.NumMyNonzeros()) != upper.size())
+      {
+        last_failure = "the matrix's sparsity changed after MUMPS analysed it";
+        return false;
+      }
+    std::size_t entry = 0, value = 0;
     for (int row = 0; row < matrix.NumMyRows(); ++row)
       {
         int     n_entries = 0;
         double *row_values;
         int    *row_columns;
         matrix.ExtractMyRowView(row, n_entries, row_values, row_columns);
-        const int global_row = matrix.RowMap().GID(row);
-        for (int j = 0; j < n_entries; ++j)
-          {
-            const int global_column = matrix.ColMap().GID(row_columns[j]);
-            if (global_column < global_row)
-              continue;
-            values.push_back(row_values[j]);
-            if (first)
-              {
-                rows.push_back(global_row + 1);
-                columns.push_back(global_column + 1);
-              }
-          }
-      }
-    if (values.size() != rows.size())
-      {
-        last_failure = "the matrix's sparsity changed after MUMPS analysed it";
-        return false;
+        for (int j = 0; j < n_entries; ++j, ++entry)
+          if (upper[entry])
+            values[value++] = row_values[j];
       }
     instance->id.a_loc = values.data();
     if (first)

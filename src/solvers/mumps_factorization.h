@@ -71,6 +71,7 @@ namespace clothsim
     // by the analysis) and the values of the matrix factorised last.
     std::vector<int>    rows, columns;
     std::vector<double> values;
+    std::vector<bool>   upper; // by entry of the row views: in the upper triangle
     // Right-hand side and solution, all rows on rank 0.
     std::unique_ptr<Epetra_Map>    host_map;
     std::unique_ptr<Epetra_Import> to_host;
