@@ -187,8 +187,11 @@ namespace clothsim::physics
       dissipative_gradient->assign(n_relevant_dofs, 0.);
     if (gradient != nullptr)
       gradient_sums.start(u);
+    const unsigned int n_element_dofs = directors ? 12 : 9;
+    if (hessian != nullptr)
+      hessian_scatter.start(*hessian, discretization.elements().size(), n_element_dofs);
 
-    const unsigned int                   n_local = directors ? 12 : 9;
+    const unsigned int                   n_local = n_element_dofs;
     LocalVector                          g, g_dissipative;
     LocalMatrix                          H;
     FullMatrix<double>                   cell_matrix(n_local, n_local);
@@ -247,7 +250,8 @@ namespace clothsim::physics
           for (unsigned int i = 0; i < n_local; ++i)
             for (unsigned int j = 0; j < n_local; ++j)
               cell_matrix(i, j) = H[i][j];
-          constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
+          if (!hessian_scatter.add(state.index, dof_vector, cell_matrix, constraints))
+            constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
         }
     });
 

@@ -7,6 +7,7 @@
 // steppers (area ratios) are evaluated here too.
 
 #include "mesh/discretization.h"
+#include "mesh/element_matrix_scatter.h"
 #include "mesh/local_sums.h"
 #include "physics/term.h"
 
@@ -160,10 +161,11 @@ namespace clothsim::physics
     unsigned int                              n_relevant_dofs; // of ghosted vectors
     std::vector<MembraneRestData>             rest; // per element, for strain and areas
     // With directors: per element, its angle dofs' local indices in ghosted vectors.
-    std::vector<std::array<int, 3>> angle_local_dofs;
-    mutable mesh::LocalSums         gradient_sums;   // the cell loop's gradient
-    mutable std::vector<double>     seconds;         // per term, see term_seconds()
-    const double                    timing_overhead; // s per sample
+    std::vector<std::array<int, 3>>    angle_local_dofs;
+    mutable mesh::LocalSums            gradient_sums;   // the cell loop's gradient
+    mutable mesh::ElementMatrixScatter hessian_scatter; // and its Hessian
+    mutable std::vector<double>        seconds;         // per term, see term_seconds()
+    const double                       timing_overhead; // s per sample
   };
 
   // Output fields of an element term (membrane stress, curvature change, ...).

@@ -1,0 +1,94 @@
+#include "mesh/element_matrix_scatter.h"
+
+#include <Epetra_CrsMatrix.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace clothsim::mesh
+{
+  void
+  ElementMatrixScatter::start(TrilinosWrappers::SparseMatrix &matrix,
+                              const unsigned int              n_elements,
+                              const unsigned int              n_dofs)
+  {
+    // The matrix is ours to fill: deal.II hands out its Epetra matrix read-only only.
+    auto &crs = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
+    if (&crs != matrix_id || crs.NumMyNonzeros() != n_nonzeros ||
+        n_dofs != this->n_dofs || status.size() != n_elements)
+      {
+        matrix_id    = &crs;
+        n_nonzeros   = crs.NumMyNonzeros();
+        this->n_dofs = n_dofs;
+        status.assign(n_elements, Status::unknown);
+        local_rows.assign(std::size_t(n_elements) * n_dofs, -1);
+        positions.assign(std::size_t(n_elements) * n_dofs * n_dofs, 0);
+      }
+    row_values.resize(crs.NumMyRows());
+    for (int row = 0; row < crs.NumMyRows(); ++row)
+      {
+        int     n_entries = 0;
+        double *values    = nullptr;
+        int    *columns   = nullptr;
+        crs.ExtractMyRowView(row, n_entries, values, columns);
+        row_values[row] = values;
+      }
+  }
+
+
+  bool
+  ElementMatrixScatter::add(const unsigned int                          element,
+                            const std::vector<types::global_dof_index> &dofs,
+                            const FullMatrix<double>                   &cell_matrix,
+                            const AffineConstraints<double>            &constraints)
+  {
+    AssertDimension(dofs.size(), n_dofs);
+    for (const types::global_dof_index dof : dofs)
+      if (constraints.is_constrained(dof))
+        return false;
+    int *const           rows     = &local_rows[std::size_t(element) * n_dofs];
+    std::uint16_t *const position = &positions[std::size_t(element) * n_dofs * n_dofs];
+    if (status[element] == Status::unknown)
+      {
+        // Find the entries once: local row, and the column's place in that row.
+        const auto &crs = *static_cast<const Epetra_CrsMatrix *>(matrix_id);
+        status[element] = Status::direct;
+        for (unsigned int i = 0; i < n_dofs && status[element] == Status::direct; ++i)
+          {
+            rows[i]           = crs.RowMap().LID(static_cast<int>(dofs[i]));
+            int     n_entries = 0;
+            double *values    = nullptr;
+            int    *columns   = nullptr;
+            if (rows[i] < 0 ||
+                crs.ExtractMyRowView(rows[i], n_entries, values, columns) != 0)
+              {
+                status[element] = Status::other;
+                break;
+              }
+            for (unsigned int j = 0; j < n_dofs; ++j)
+              {
+                const int        column = crs.ColMap().LID(static_cast<int>(dofs[j]));
+                const int *const found =
+                  column < 0 ? columns + n_entries
+                             : std::find(columns, columns + n_entries, column);
+                if (found == columns + n_entries ||
+                    found - columns > std::numeric_limits<std::uint16_t>::max())
+                  {
+                    status[element] = Status::other;
+                    break;
+                  }
+                position[i * n_dofs + j] = static_cast<std::uint16_t>(found - columns);
+              }
+          }
+      }
+    if (status[element] != Status::direct)
+      return false;
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      {
+        double *const values = row_values[rows[i]];
+        for (unsigned int j = 0; j < n_dofs; ++j)
+          values[position[i * n_dofs + j]] += cell_matrix(i, j);
+      }
+    return true;
+  }
+} // namespace clothsim::mesh
