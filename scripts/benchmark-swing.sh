@@ -5,7 +5,7 @@
 #
 # For each N of --sizes it runs clothsim on meshes/swing-N.msh (N x N vertices, generated
 # from its .geo on first use) once with "Model=fem" and once with "Model=mass-spring",
-# then prints one table, a row per N and model:
+# then prints one table, a row per N, model and number of MPI ranks (--ranks):
 #   vertices        of the mesh, as the run reports it
 #   steps           time steps taken (last row of statistics.csv)
 #   halvings        step halvings after a failed Newton solve ("step halvings" of the run)
@@ -14,8 +14,13 @@
 #   us/vtx-step     wall_s / (vertices x steps), in microseconds
 #   newton/step     Newton iterations per step, failed attempts included
 #   lin/newton      linear iterations per Newton iteration
+#   ranks           MPI ranks of the run (mpirun -np, for more than one)
 #   fem/ms          (fem rows) the fem cost per vertex-step over the mass-spring one
-#   vs_N0           the cost per vertex-step over the same model's at the smallest N
+#                   (same N and ranks)
+#   vs_N0           the cost per vertex-step over the same model's at the smallest N (same
+#                   ranks)
+#   speedup         (runs on several ranks) the wall time on one rank over this one, same N
+#                   and model (needs 1 in --ranks)
 #   status          ok, or FAILED with the time the run reached
 # A run that fails ends the benchmark: the rows measured so far (the failed run's from
 # what it wrote, its iteration counts from its accepted steps only, marked *) are
@@ -27,6 +32,8 @@
 #   --sizes "N ..."   vertices per side (default "21 41 81 161 321"; a meshes/swing-N.geo
 #                     must exist)
 #   --end-time T      simulated time, s (default 2, as the scene)
+#   --ranks "R ..."   MPI ranks per run (default "1"); e.g. "1 2" runs everything on one
+#                     rank and under mpirun -np 2, and prints the speedup
 #   --params FILE     parameter file (default params/benchmarks/swing.prm; e.g.
 #                     params/benchmarks/swing-membrane.prm)
 #   --set "S/N=V"     passed to every run (repeatable), e.g. --set "Time/Integrator=bdf2"
@@ -43,6 +50,7 @@ set -uo pipefail
 
 repository=$(cd "$(dirname "$0")/.." && pwd)
 sizes="21 41 81 161 321"
+ranks_list="1"
 end_time=2
 params="$repository/params/benchmarks/swing.prm"
 build="$repository/build"
@@ -60,11 +68,12 @@ die() {
 
 while [ $# -gt 0 ]; do
   case "$1" in
-    --sizes | --end-time | --params | --set | --build | --output)
+    --sizes | --end-time | --ranks | --params | --set | --build | --output)
       [ $# -ge 2 ] || die "$1 expects a value"
       case "$1" in
         --sizes) sizes=$2 ;;
         --end-time) end_time=$2 ;;
+        --ranks) ranks_list=$2 ;;
         --params) params=$2 ;;
         --set) overrides+=(--set "$2") ;;
         --build) build=$2 ;;
@@ -101,6 +110,19 @@ for n in $sizes; do
         sort -n | tr '\n' ' '))"
 done
 
+ranks_list=$(tr -s ' \t' '\n' <<<"$ranks_list" | grep . | sort -n -u | tr '\n' ' ')
+ranks_list=${ranks_list% }
+[ -n "$ranks_list" ] || die "--ranks: no number of ranks given"
+for r in $ranks_list; do
+  [[ "$r" =~ ^[1-9][0-9]*$ ]] || die "--ranks: '$r' is not a positive number of ranks"
+done
+mpirun=()
+if [ "$ranks_list" != "1" ]; then
+  command -v mpirun >/dev/null || die "--ranks: no mpirun on the PATH"
+  mpirun=(mpirun --oversubscribe)
+  [ "$(id -u)" -eq 0 ] && mpirun+=(--allow-run-as-root)
+fi
+
 if [ -z "$output" ]; then
   output=$(mktemp -d "${TMPDIR:-/tmp}/benchmark-swing.XXXXXX") || die "cannot create a temporary directory"
   temporary=true
@@ -110,7 +132,7 @@ else
 fi
 output=$(cd "$output" && pwd)
 
-# One row per run, tab-separated: n model vertices steps halvings wall newton linear
+# One row per run, tab-separated: n model ranks vertices steps halvings wall newton linear
 # status, where newton and linear are totals.
 rows=()
 
@@ -147,29 +169,36 @@ print_table() {
   printf '%s\n' "${rows[@]}" | awk -F'\t' -v smallest="${sizes%% *}" '
     # value with the given printf format, or "-" where it is not defined.
     function show(defined, format, value) { return defined ? sprintf(format, value) : "-" }
-    { n[NR] = $1; model[NR] = $2; vertices[NR] = $3; steps[NR] = $4; halvings[NR] = $5
-      wall[NR] = $6; newton[NR] = $7; linear[NR] = $8; status[NR] = $9
-      cost[NR] = ($3 > 0 && $4 > 0) ? 1e6 * $6 / ($3 * $4) : 0
-      if (cost[NR] > 0) { of[$1, $2] = cost[NR]; if (!($2 in first)) first[$2] = cost[NR] } }
+    { n[NR] = $1; model[NR] = $2; ranks[NR] = $3; vertices[NR] = $4; steps[NR] = $5
+      halvings[NR] = $6; wall[NR] = $7; newton[NR] = $8; linear[NR] = $9; status[NR] = $10
+      cost[NR] = ($4 > 0 && $5 > 0) ? 1e6 * $7 / ($4 * $5) : 0
+      if (cost[NR] > 0) {
+        of[$1, $2, $3] = cost[NR]
+        if (!(($2, $3) in first)) first[$2, $3] = cost[NR]
+      } }
     END {
-      format = "%5s  %-11s %8s %6s %8s %9s %11s %11s %10s %6s %6s  %s\n"
-      printf format, "N", "model", "vertices", "steps", "halvings", "wall_s",
-        "us/vtx-step", "newton/step", "lin/newton", "fem/ms", "vs_N0", "status"
+      format = "%5s  %-11s %5s %8s %6s %8s %9s %11s %11s %10s %6s %6s %7s  %s\n"
+      printf format, "N", "model", "ranks", "vertices", "steps", "halvings", "wall_s",
+        "us/vtx-step", "newton/step", "lin/newton", "fem/ms", "vs_N0", "speedup", "status"
       for (r = 1; r <= NR; ++r) {
         mark = status[r] == "ok" ? "" : "*"
-        ms = of[n[r], "mass-spring"]
-        printf format, n[r], model[r], show(vertices[r] > 0, "%d", vertices[r]), steps[r],
-          halvings[r],
+        ms = of[n[r], "mass-spring", ranks[r]]
+        one = of[n[r], model[r], 1]
+        printf format, n[r], model[r], ranks[r], show(vertices[r] > 0, "%d", vertices[r]),
+          steps[r], halvings[r],
           sprintf("%.2f", wall[r]), show(cost[r] > 0, "%.1f", cost[r]),
           show(steps[r] > 0, "%.2f" mark, newton[r] / (steps[r] ? steps[r] : 1)),
           show(newton[r] > 0, "%.2f" mark, linear[r] / (newton[r] ? newton[r] : 1)),
           show(model[r] == "fem" && cost[r] > 0 && ms > 0, "%.2f", cost[r] / (ms ? ms : 1)),
-          show(cost[r] > 0, "%.2f", cost[r] / (first[model[r]] ? first[model[r]] : 1)),
+          show(cost[r] > 0, "%.2f",
+               cost[r] / (first[model[r], ranks[r]] ? first[model[r], ranks[r]] : 1)),
+          show(ranks[r] > 1 && cost[r] > 0 && one > 0, "%.2f", one / (cost[r] ? cost[r] : 1)),
           status[r]
       }
       printf "(us/vtx-step: wall time of the time loop per vertex and step; fem/ms: the fem\n"
-      printf "cost per vertex-step over the mass-spring one on the same mesh; vs_N0: over the\n"
-      printf "same model'"'"'s at N = %s; *: a failed run'"'"'s accepted steps only)\n", smallest
+      printf "cost per vertex-step over the mass-spring one on the same mesh and ranks; vs_N0:\n"
+      printf "over the same model'"'"'s at N = %s; speedup: one rank'"'"'s wall time over this\n", smallest
+      printf "one'"'"'s; *: a failed run'"'"'s accepted steps only)\n"
     }'
 }
 
@@ -184,30 +213,35 @@ trap 'finish 1; echo "benchmark-swing: interrupted; runs kept in $output" >&2; e
 
 echo "benchmark-swing: $(basename "$params"), end time $end_time s, sizes $sizes${overrides[*]+, ${overrides[*]}}" >&2
 for n in $sizes; do
-  for model in fem mass-spring; do
-    directory="$output/N-$n/$model"
-    mkdir -p "$directory" || die "cannot create '$directory'"
-    printf 'N = %s, %s ... ' "$n" "$model" >&2
-    "$clothsim" "$params" --set "Mesh/Mesh file=$repository/meshes/swing-$n.msh" \
-      --set "Time/End time=$end_time" --set "Output/Progress=off" "${overrides[@]}" \
-      --set "Model=$model" --output-dir "$directory" >"$directory/run.log" 2>&1
-    code=$?
-    fields=$(measure "$directory")
-    if [ $code -eq 0 ]; then
-      status=ok
-    else
-      reached=$(awk -F, 'NR > 1 { t = $2 } END { print t + 0 }' "$directory/statistics.csv" 2>/dev/null)
-      status="FAILED (exit $code, t = ${reached:-0} s)"
-    fi
-    rows+=("$n"$'\t'"$model"$'\t'"$fields"$'\t'"$status")
-    echo "$status, $(cut -f4 <<<"$fields") s" >&2
-    if [ $code -ne 0 ]; then
-      print_table
-      message=$(grep -E '^clothsim: (error|simulation failed|output failed|interrupted)' \
-        "$directory/run.log" | tail -n 1)
-      die "the run N = $n, $model failed (exit code $code): ${message:-no message}; log:" \
-        "$directory/run.log"
-    fi
+  for ranks in $ranks_list; do
+    for model in fem mass-spring; do
+      directory="$output/N-$n/$model"
+      [ "$ranks" -gt 1 ] && directory="$directory-np$ranks"
+      mkdir -p "$directory" || die "cannot create '$directory'"
+      printf 'N = %s, %s, %s rank(s) ... ' "$n" "$model" "$ranks" >&2
+      launcher=()
+      [ "$ranks" -gt 1 ] && launcher=("${mpirun[@]}" -np "$ranks")
+      "${launcher[@]}" "$clothsim" "$params" --set "Mesh/Mesh file=$repository/meshes/swing-$n.msh" \
+        --set "Time/End time=$end_time" --set "Output/Progress=off" "${overrides[@]}" \
+        --set "Model=$model" --output-dir "$directory" >"$directory/run.log" 2>&1
+      code=$?
+      fields=$(measure "$directory")
+      if [ $code -eq 0 ]; then
+        status=ok
+      else
+        reached=$(awk -F, 'NR > 1 { t = $2 } END { print t + 0 }' "$directory/statistics.csv" 2>/dev/null)
+        status="FAILED (exit $code, t = ${reached:-0} s)"
+      fi
+      rows+=("$n"$'\t'"$model"$'\t'"$ranks"$'\t'"$fields"$'\t'"$status")
+      echo "$status, $(cut -f4 <<<"$fields") s" >&2
+      if [ $code -ne 0 ]; then
+        print_table
+        message=$(grep -E '^clothsim: (error|simulation failed|output failed|interrupted)' \
+          "$directory/run.log" | tail -n 1)
+        die "the run N = $n, $model, $ranks rank(s) failed (exit code $code):" \
+          "${message:-no message}; log: $directory/run.log"
+      fi
+    done
   done
 done
 print_table
