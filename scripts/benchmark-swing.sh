@@ -43,8 +43,8 @@
 #                     temporary directory, removed at the end unless --keep is given
 #   --keep            keep the temporary output directory (its path is printed)
 # Example: scripts/benchmark-swing.sh --sizes "21 41" --end-time 0.2
-# Time: at the solver's speed when this was written, N = 41 alone takes about 20 s per
-# 0.5 s of simulated time (fem), and the cost per vertex-step grows with N: the defaults
+# Time: at the solver's speed when this was written, N = 81 alone takes about 40 s per
+# 0.5 s of simulated time (fem and mass-spring), and the cost per vertex-step grows with N: the defaults
 # take long.
 set -uo pipefail
 

@@ -310,6 +310,8 @@ namespace clothsim
     double                               value = 0.;
     if (gradient != nullptr)
       gradient_sums.start(u);
+    if (hessian != nullptr)
+      hessian_scatter.start(*hessian, entries.size(), 6);
     for (unsigned int s = 0; s < entries.size(); ++s)
       {
         const Entry &entry = entries[s];
@@ -373,7 +375,8 @@ namespace clothsim
             for (unsigned int i = 0; i < 6; ++i)
               for (unsigned int j = 0; j < 6; ++j)
                 cell_matrix(i, j) = H[i][j];
-            constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
+            if (!hessian_scatter.add(s, dofs, cell_matrix, constraints))
+              constraints.distribute_local_to_global(cell_matrix, dofs, *hessian);
           }
       }
     if (gradient != nullptr)

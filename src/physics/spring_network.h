@@ -23,6 +23,7 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include "mesh/element_matrix_scatter.h"
 #include "mesh/local_sums.h"
 #include "physics/mass_spring.h"
 
@@ -185,9 +186,10 @@ namespace clothsim
     std::vector<Entry> entries;
     // Per entry, if β > 0: the block B of the projected Hessian at u_n,
     // K_n = [[B, -B], [-B, B]] (physics/mass_spring.h).
-    std::vector<Tensor<2, 3>> damping_blocks;
-    mutable mesh::LocalSums   gradient_sums; // add_to_step's gradient
-    std::vector<unsigned int> colors;        // per entry (structural)
-    unsigned int              color_count = 0;
+    std::vector<Tensor<2, 3>>          damping_blocks;
+    mutable mesh::LocalSums            gradient_sums;   // add_to_step's gradient
+    mutable mesh::ElementMatrixScatter hessian_scatter; // and its Hessian
+    std::vector<unsigned int>          colors;          // per entry (structural)
+    unsigned int                       color_count = 0;
   };
 } // namespace clothsim
