@@ -14,6 +14,7 @@
 #include <NOX_StatusTest_MaxIters.H>
 #include <NOX_StatusTest_NormF.H>
 #include <Teuchos_ParameterList.hpp>
+#include <Teuchos_oblackholestream.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -457,6 +458,12 @@ namespace clothsim
            parameters.print_iterations
              ? NOX::Utils::Error + NOX::Utils::OuterIteration + NOX::Utils::InnerIteration
              : NOX::Utils::Error);
+    // NOX prints "line search failed" at any print level: discarded unless printing
+    // iterations (the stepper reports every failed solve with result.failure).
+    if (!parameters.print_iterations)
+      nox_parameters->sublist("Printing")
+        .set<Teuchos::RCP<std::ostream>>("Output Stream",
+                                         Teuchos::rcp(new Teuchos::oblackholestream));
     nox_parameters->sublist("Direction").set("Method", "Newton");
     Teuchos::ParameterList &newton_parameters =
       nox_parameters->sublist("Direction").sublist("Newton");
