@@ -346,9 +346,7 @@ namespace clothsim
       std::ostream &
       print(std::ostream &stream, int indent = 0) const override
       {
-        for (int i = 0; i < indent; ++i)
-          stream << ' ';
-        return stream << status << "full Newton step below "
+        return stream << std::string(indent, ' ') << status << "full Newton step below "
                       << std::max(tolerance, last_tolerance) << " m\n";
       }
 
@@ -393,9 +391,7 @@ namespace clothsim
       std::ostream &
       print(std::ostream &stream, int indent = 0) const override
       {
-        for (int i = 0; i < indent; ++i)
-          stream << ' ';
-        return stream << "tangent reuse monitor\n";
+        return stream << std::string(indent, ' ') << "tangent reuse monitor\n";
       }
 
     private:
@@ -453,17 +449,17 @@ namespace clothsim
 
     auto nox_parameters = Teuchos::rcp(new Teuchos::ParameterList);
     nox_parameters->set("Nonlinear Solver", "Line Search Based");
-    nox_parameters->sublist("Printing")
-      .set("Output Information",
-           parameters.print_iterations
-             ? NOX::Utils::Error + NOX::Utils::OuterIteration + NOX::Utils::InnerIteration
-             : NOX::Utils::Error);
     // NOX prints "line search failed" at any print level: discarded unless printing
     // iterations (the stepper reports every failed solve with result.failure).
+    Teuchos::ParameterList &printing = nox_parameters->sublist("Printing");
+    printing.set("Output Information",
+                 parameters.print_iterations
+                   ? NOX::Utils::Error + NOX::Utils::OuterIteration +
+                       NOX::Utils::InnerIteration
+                   : NOX::Utils::Error);
     if (!parameters.print_iterations)
-      nox_parameters->sublist("Printing")
-        .set<Teuchos::RCP<std::ostream>>("Output Stream",
-                                         Teuchos::rcp(new Teuchos::oblackholestream));
+      printing.set<Teuchos::RCP<std::ostream>>(
+        "Output Stream", Teuchos::rcp(new Teuchos::oblackholestream));
     nox_parameters->sublist("Direction").set("Method", "Newton");
     Teuchos::ParameterList &newton_parameters =
       nox_parameters->sublist("Direction").sublist("Newton");
