@@ -187,11 +187,10 @@ namespace clothsim::physics
       dissipative_gradient->assign(n_relevant_dofs, 0.);
     if (gradient != nullptr)
       gradient_sums.start(u);
-    const unsigned int n_element_dofs = directors ? 12 : 9;
+    const unsigned int n_local = directors ? 12 : 9;
     if (hessian != nullptr)
-      hessian_scatter.start(*hessian, discretization.elements().size(), n_element_dofs);
+      hessian_scatter.start(*hessian, discretization.elements().size(), n_local);
 
-    const unsigned int                   n_local = n_element_dofs;
     LocalVector                          g, g_dissipative;
     LocalMatrix                          H;
     FullMatrix<double>                   cell_matrix(n_local, n_local);
