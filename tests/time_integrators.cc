@@ -7,11 +7,13 @@
 //    the amplitude (loss below 0.5 %), BDF2 damps less than backward Euler.
 // 3. Temporal convergence: the largest error of the centre's deflection over one period
 //    (0.4 s) with dt = 0.005, 0.0025, 0.00125 s against the midpoint rule at dt =
-//    0.0003125 s; observed orders 1 (backward Euler) and 2 (BDF2, implicit midpoint)
-//    within ±0.15.
+//    0.0003125 s; observed orders 1 (backward Euler) and 2 (BDF2, implicit midpoint,
+//    average vector field) within ±0.15.
 // 4. Energy: the midpoint rule at T/16 over 100 periods keeps the total energy within
 //    0.5 % of the vibration's energy (the largest kinetic energy; the pre-stress energy
-//    is a constant far larger).
+//    is a constant far larger); its average-vector-field variant conserves it to 1e-6
+//    of that (the membrane is quartic, which two-point Gauss averages exactly: only the
+//    Newton tolerance is left) and keeps f_11 within 1 % at T/80.
 // 5. The single linearised step against full Newton (see below).
 // 6. Adaptive steps with a tolerance per step (see below).
 // 7. Accuracy target (error per unit step) over one period: the error at the end against
@@ -91,7 +93,8 @@ namespace
   {
     bool                passed = true;
     std::vector<double> losses;
-    for (const std::string integrator : {"implicit midpoint", "bdf2", "backward euler"})
+    for (const std::string integrator :
+         {"implicit midpoint", "bdf2", "backward euler", "average vector field"})
       {
         const Oscillation oscillation =
           analyse(run(integrator, period / 80., 5. * period));
@@ -102,14 +105,14 @@ namespace
               << " %), amplitude lost over 4 periods " << 100. * loss << " %"
               << std::endl;
         losses.push_back(loss);
-        if (integrator == "implicit midpoint")
+        if (integrator == "implicit midpoint" || integrator == "average vector field")
           {
             passed &= check_below(pcout,
-                                  "midpoint: |f / f_11 - 1|",
+                                  integrator + ": |f / f_11 - 1|",
                                   std::abs(oscillation.frequency / frequency - 1.),
                                   0.01);
             passed &=
-              check_below(pcout, "midpoint: amplitude lost", std::abs(loss), 0.005);
+              check_below(pcout, integrator + ": amplitude lost", std::abs(loss), 0.005);
           }
       }
     passed &= check_below(pcout,
@@ -142,8 +145,11 @@ namespace
     const double end       = 0.4; // about one period
     const auto   reference = run("implicit midpoint", 0.0003125, end);
     bool         passed    = true;
-    for (const auto &[integrator, order] : std::vector<std::pair<std::string, double>>{
-           {"backward euler", 1.}, {"bdf2", 2.}, {"implicit midpoint", 2.}})
+    for (const auto &[integrator, order] :
+         std::vector<std::pair<std::string, double>>{{"backward euler", 1.},
+                                                     {"bdf2", 2.},
+                                                     {"implicit midpoint", 2.},
+                                                     {"average vector field", 2.}})
       {
         std::vector<double> errors;
         for (const double dt : {0.005, 0.0025, 0.00125})
@@ -164,15 +170,22 @@ namespace
   bool
   check_energy(ConditionalOStream &pcout)
   {
-    run("implicit midpoint", period / 16., 100. * period);
-    const EnergyDrift energy = energy_drift(directory + "/statistics.csv");
-    pcout << "  midpoint at T/16 over 100 periods (" << energy.steps
-          << " steps): largest energy drift " << energy.drift << " J, vibration energy "
-          << energy.largest_kinetic << " J" << std::endl;
-    return check_below(pcout,
-                       "energy drift / vibration energy",
-                       energy.drift / energy.largest_kinetic,
-                       0.005);
+    bool passed = true;
+    for (const auto &[integrator, bound] :
+         std::vector<std::pair<std::string, double>>{{"implicit midpoint", 0.005},
+                                                     {"average vector field", 1e-6}})
+      {
+        run(integrator, period / 16., 100. * period);
+        const EnergyDrift energy = energy_drift(directory + "/statistics.csv");
+        pcout << "  " << integrator << " at T/16 over 100 periods (" << energy.steps
+              << " steps): largest energy drift " << energy.drift
+              << " J, vibration energy " << energy.largest_kinetic << " J" << std::endl;
+        passed &= check_below(pcout,
+                              integrator + ": energy drift / vibration energy",
+                              energy.drift / energy.largest_kinetic,
+                              bound);
+      }
+    return passed;
   }
   // 5. The single linearised step (Baraff & Witkin) on the default hanging sheet, 0.5 s
   // of
@@ -314,7 +327,7 @@ main(int argc, char **argv)
   bool passed = check_frequency_and_damping(pcout);
   pcout << "3. temporal convergence" << std::endl;
   passed &= check_orders(pcout);
-  pcout << "4. energy of the midpoint rule" << std::endl;
+  pcout << "4. energy of the midpoint rule and its AVF variant" << std::endl;
   passed &= check_energy(pcout);
   pcout << "5. the single linearised step" << std::endl;
   passed &= check_single_step(pcout);

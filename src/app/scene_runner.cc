@@ -263,6 +263,8 @@ namespace clothsim
           return "bdf2";
         case Integrator::implicit_midpoint:
           return "implicit midpoint";
+        case Integrator::average_vector_field:
+          return "average vector field";
       }
     return "";
   }

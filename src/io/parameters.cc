@@ -296,7 +296,7 @@ namespace clothsim
       throw InputError(file,
                        "Time/Accuracy target",
                        "an accuracy target needs an implicit dynamic integrator "
-                       "(backward euler, bdf2, implicit midpoint)");
+                       "(backward euler, bdf2, implicit midpoint, average vector field)");
     if (parameters.time.accuracy_target > 0. &&
         parameters.nonlinear_solver.method == NewtonMethod::single_step)
       throw InputError(file,
@@ -309,7 +309,7 @@ namespace clothsim
       throw InputError(file,
                        "Time/Adaptive time steps",
                        "adaptive time steps are for the implicit dynamic integrators "
-                       "(backward euler, bdf2, implicit midpoint)");
+                       "(backward euler, bdf2, implicit midpoint, average vector field)");
     if (parameters.time.adaptive_time_steps && parameters.time.accuracy_target == 0. &&
         parameters.time.error_tolerance == 0. &&
         parameters.time.relative_error_tolerance == 0.)

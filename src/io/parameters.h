@@ -129,11 +129,21 @@ namespace clothsim
   {
     backward_euler,
     static_load_steps,
-    symplectic_euler, // explicit
-    velocity_verlet,  // explicit
-    bdf2,             // implicit, second order, variable step
-    implicit_midpoint // implicit, second order, symplectic
+    symplectic_euler,    // explicit
+    velocity_verlet,     // explicit
+    bdf2,                // implicit, second order, variable step
+    implicit_midpoint,   // implicit, second order, symplectic
+    average_vector_field // implicit, second order, the midpoint rule conserving energy
   };
+
+  // The implicit midpoint rule and its energy-conserving variant solve for the step's
+  // midpoint.
+  inline bool
+  solves_for_midpoint(const Integrator integrator)
+  {
+    return integrator == Integrator::implicit_midpoint ||
+           integrator == Integrator::average_vector_field;
+  }
 
   // Explicit integrators take no Newton solve: a step is a force evaluation.
   inline bool

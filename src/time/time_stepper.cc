@@ -1,87 +1,15 @@
 #include "time/time_stepper.h"
 
 #include "io/progress.h"
+#include "time/step_problem.h"
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <iomanip>
 #include <sstream>
 
 namespace clothsim
 {
-  namespace
-  {
-    // Newton's view of one step: Φ, ∇Φ, ∇²Φ from the model, with owned <-> ghosted
-    // copies.
-    class StepProblem : public NonlinearProblem
-    {
-    public:
-      StepProblem(const ModelInterface &model, const StepTerms &terms, TimerOutput &timer)
-        : model(model)
-        , terms(terms)
-        , timer(timer)
-      {
-        model.initialize_ghosted(ghosted);
-      }
-
-      double
-      objective(const VectorType &u) override
-      {
-        TimerOutput::Scope scope(timer, "assemble energy");
-        ghosted = u;
-        return model.assemble(ghosted, terms, nullptr, nullptr);
-      }
-
-      void
-      residual(const VectorType &u, VectorType &F) override
-      {
-        TimerOutput::Scope scope(timer, "assemble residual");
-        ghosted = u;
-        model.assemble(ghosted, terms, &F, nullptr);
-      }
-
-      void
-      tangent(const VectorType &u, MatrixType &J, const bool projected) override
-      {
-        TimerOutput::Scope scope(timer, "assemble tangent");
-        ghosted                 = u;
-        terms.projected_tangent = projected;
-        model.assemble(ghosted, terms, nullptr, &J);
-      }
-
-      double
-      update_size(const VectorType &update) const override
-      {
-        double largest = 0.;
-        for (const types::global_dof_index i : model.displacement_dofs())
-          largest = std::max(largest, std::abs(update[i]));
-        return Utilities::MPI::max(largest, model.get_communicator());
-      }
-
-      // Newton's step test tolerates updates up to this function of the iterate (m).
-      void
-      set_update_tolerance(std::function<double(const VectorType &)> tolerance)
-      {
-        iterate_tolerance = std::move(tolerance);
-      }
-
-      double
-      update_tolerance(const VectorType &u) const override
-      {
-        return iterate_tolerance ? iterate_tolerance(u) : 0.;
-      }
-
-    private:
-      std::function<double(const VectorType &)> iterate_tolerance;
-      const ModelInterface                     &model;
-      StepTerms                                 terms;
-      TimerOutput                              &timer;
-      VectorType                                ghosted;
-    };
-  } // namespace
-
-
   TimeStepper::TimeStepper(const Parameters   &parameters,
                            ModelInterface     &model,
                            OutputWriter       &output,
@@ -113,7 +41,7 @@ namespace clothsim
   {
     const Integrator integrator = parameters.time.integrator;
     const bool       bdf2       = integrator == Integrator::bdf2 && previous_step > 0.;
-    const bool       midpoint   = integrator == Integrator::implicit_midpoint;
+    const bool       midpoint   = solves_for_midpoint(integrator);
     StepTerms        terms;
     terms.load_factor = load_factor;
     if (!dynamic)
@@ -177,7 +105,7 @@ namespace clothsim
                             const double dt,
                             const double load_factor)
   {
-    const bool midpoint = parameters.time.integrator == Integrator::implicit_midpoint;
+    const bool midpoint = solves_for_midpoint(parameters.time.integrator);
     Attempt    attempt;
 
     // predict (u_ghosted holds the state n)
@@ -193,6 +121,8 @@ namespace clothsim
     // tenth of the time-error tolerance: solving further would be below the truncation
     // error.
     StepProblem problem(model, terms, timer);
+    if (parameters.time.integrator == Integrator::average_vector_field)
+      problem.average_along_path_from(u_n);
     if (terms.inertia_weight != tangent_weights.first ||
         terms.damping_weight != tangent_weights.second)
       newton.invalidate_tangent(/*rescaled=*/true);
@@ -301,7 +231,7 @@ namespace clothsim
         // error is its constant over the difference of the two.
         const double omega     = dt / previous_step;
         const double predictor = 1. / 6. + 1. / (4. * omega);
-        if (integrator == Integrator::implicit_midpoint)
+        if (solves_for_midpoint(integrator))
           kappa = (1. / 12.) / (predictor + 1. / 12.);
         else
           {
@@ -312,7 +242,7 @@ namespace clothsim
         a_weight = 0.5 * dt * dt / previous_step;
       }
     // The end state u₊: u itself, or 2 u - u_n from the midpoint rule's midpoint.
-    const bool midpoint = u_is_midpoint && integrator == Integrator::implicit_midpoint;
+    const bool midpoint = u_is_midpoint && solves_for_midpoint(integrator);
     double     largest  = 0.;
     for (const types::global_dof_index i : model.displacement_dofs())
       {

@@ -1,0 +1,117 @@
+#include "time/step_problem.h"
+
+#include <cmath>
+
+namespace clothsim
+{
+  namespace
+  {
+    // Two-point Gauss quadrature on [0, 1]: weight 1/2 at s = 1/2 ∓ √3/6; the path's
+    // point is q_n + c (x - q_n) with c = 2s.
+    constexpr double gauss_weight = 0.5;
+    const double     gauss_c[2]   = {1. - 1. / std::sqrt(3.), 1. + 1. / std::sqrt(3.)};
+  } // namespace
+
+
+  StepProblem::StepProblem(const ModelInterface &model,
+                           const StepTerms      &terms,
+                           TimerOutput          &timer)
+    : model(model)
+    , terms(terms)
+    , timer(timer)
+  {
+    model.initialize_ghosted(ghosted);
+  }
+
+
+  void
+  StepProblem::average_along_path_from(const VectorType &start)
+  {
+    path_start = &start;
+    model.initialize_owned(owned_point);
+    model.initialize_owned(owned_sum);
+  }
+
+
+  void
+  StepProblem::set_path_point(const VectorType &x, const double c)
+  {
+    owned_point = x;
+    owned_point.sadd(c, 1. - c, *path_start);
+    ghosted = owned_point;
+  }
+
+
+  double
+  StepProblem::objective(const VectorType &u)
+  {
+    TimerOutput::Scope scope(timer, "assemble energy");
+    if (path_start == nullptr)
+      {
+        ghosted = u;
+        return model.assemble(ghosted, terms, nullptr, nullptr);
+      }
+    // G(x) + Φ(q_n) Σ w/c: the constant does not change the minimiser.
+    double value = 0.;
+    for (const double c : gauss_c)
+      {
+        set_path_point(u, c);
+        value += gauss_weight / c * model.assemble(ghosted, terms, nullptr, nullptr);
+      }
+    return value;
+  }
+
+
+  void
+  StepProblem::residual(const VectorType &u, VectorType &F)
+  {
+    TimerOutput::Scope scope(timer, "assemble residual");
+    if (path_start == nullptr)
+      {
+        ghosted = u;
+        model.assemble(ghosted, terms, &F, nullptr);
+        return;
+      }
+    // ḡ = Σ w ∇Φ(q_n + c (x - q_n))
+    set_path_point(u, gauss_c[0]);
+    model.assemble(ghosted, terms, &owned_sum, nullptr);
+    set_path_point(u, gauss_c[1]);
+    model.assemble(ghosted, terms, &F, nullptr);
+    F.sadd(gauss_weight, gauss_weight, owned_sum);
+  }
+
+
+  void
+  StepProblem::tangent(const VectorType &u, MatrixType &J, const bool projected)
+  {
+    TimerOutput::Scope scope(timer, "assemble tangent");
+    terms.projected_tangent = projected;
+    if (path_start == nullptr)
+      {
+        ghosted = u;
+        model.assemble(ghosted, terms, nullptr, &J);
+        return;
+      }
+    // Σ w c ∇²Φ(q_n + c (x - q_n)); each node's projected Hessian is positive
+    // semi-definite, so is their sum. The unit diagonal of constrained rows stays one:
+    // Σ w c = 1. Both nodes are assembled into J (its assembly keeps the positions it
+    // found in J's value arrays); the first is parked in a copy of the same sparsity.
+    set_path_point(u, gauss_c[0]);
+    model.assemble(ghosted, terms, nullptr, &J);
+    first_tangent.copy_from(J);
+    set_path_point(u, gauss_c[1]);
+    model.assemble(ghosted, terms, nullptr, &J);
+    J *= gauss_weight * gauss_c[1];
+    J.add(gauss_weight * gauss_c[0], first_tangent);
+  }
+
+
+  double
+  StepProblem::update_size(const VectorType &update) const
+  {
+    double largest = 0.;
+    for (const types::global_dof_index i : model.displacement_dofs())
+      largest = std::max(largest, std::abs(update[i]));
+    return Utilities::MPI::max(largest, model.get_communicator());
+  }
+} // namespace clothsim

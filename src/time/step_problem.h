@@ -1,0 +1,79 @@
+#pragma once
+
+// Newton's view of one implicit step: the step's incremental potential Φ (physics/term.h)
+// from the model, its gradient and Hessian, with owned <-> ghosted copies.
+//
+// The average vector field (AVF) variant (Quispel & McLaren, J. Phys. A 41, 2008; for
+// mechanics, Celledoni et al., J. Comput. Phys. 231, 2012) replaces the midpoint rule's
+// force ∇W(x) at the midpoint x by its mean along the step's straight path,
+//   ḡ(x) = ∫₀¹ ∇Φ(q_n + s (q₊ - q_n)) ds,   q₊ = 2x - q_n,
+// so that W(q₊) - W(q_n) = ḡ·(q₊ - q_n) exactly: no energy is gained or lost by the
+// elastic and load terms. ḡ is the gradient of
+//   G(x) = ∫₀¹ (Φ(q_n + 2s (x - q_n)) - Φ(q_n)) / (2s) ds,
+// with Hessian ∫₀¹ 2s ∇²Φ(q_n + 2s (x - q_n)) ds, so the step is still a minimisation
+// with Newton's line search on G. Quadratic terms (inertia, Rayleigh damping) have
+// their midpoint value: for them G(x) = Φ(x) - Φ(q_n), and the whole Φ can be averaged.
+// Two-point Gauss quadrature, s = 1/2 ∓ √3/6, integrates G and ḡ exactly for the
+// quartic St. Venant-Kirchhoff membrane and the linear loads (energy conserved to the
+// Newton tolerance); for the bending term and the springs it is accurate to O(|Δq|⁴).
+
+#include "solvers/newton_solver.h"
+#include "time/model_interface.h"
+
+#include <functional>
+
+namespace clothsim
+{
+  class StepProblem : public NonlinearProblem
+  {
+  public:
+    // `timer` gets the "assemble energy", "assemble residual" and "assemble tangent"
+    // sections.
+    StepProblem(const ModelInterface &model, const StepTerms &terms, TimerOutput &timer);
+
+    // From now on the problem is the AVF step from the state `start` (owned, q_n; kept
+    // by reference) with the midpoint x as unknown.
+    void
+    average_along_path_from(const VectorType &start);
+
+    double
+    objective(const VectorType &u) override;
+
+    void
+    residual(const VectorType &u, VectorType &F) override;
+
+    void
+    tangent(const VectorType &u, MatrixType &J, const bool projected) override;
+
+    // The largest update of a displacement dof (m).
+    double
+    update_size(const VectorType &update) const override;
+
+    // Newton's step test tolerates updates up to this function of the iterate (m).
+    void
+    set_update_tolerance(std::function<double(const VectorType &)> tolerance)
+    {
+      iterate_tolerance = std::move(tolerance);
+    }
+
+    double
+    update_tolerance(const VectorType &u) const override
+    {
+      return iterate_tolerance ? iterate_tolerance(u) : 0.;
+    }
+
+  private:
+    // ghosted = q_n + c (x - q_n), the path's point at the quadrature node's c = 2s.
+    void
+    set_path_point(const VectorType &x, const double c);
+
+    std::function<double(const VectorType &)> iterate_tolerance;
+    const ModelInterface                     &model;
+    StepTerms                                 terms;
+    TimerOutput                              &timer;
+    VectorType                                ghosted;
+    const VectorType *path_start = nullptr;   // q_n (owned) of the AVF step, else null
+    VectorType        owned_point, owned_sum; // owned work vectors of the AVF step
+    MatrixType        first_tangent;          // the AVF tangent at the first node
+  };
+} // namespace clothsim
