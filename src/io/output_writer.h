@@ -31,7 +31,7 @@ namespace clothsim
     unsigned int        newton_iterations;
     unsigned int        linear_iterations;
     double              residual;         // final Newton residual 2-norm, N
-    unsigned int        retries;          // step halvings before this step was accepted
+    unsigned int        retries;          // failed attempts (halvings) just before it
     double              kinetic_energy;   // J
     double              elastic_energy;   // J
     double              potential_energy; // J (total: their sum)

@@ -361,6 +361,7 @@ namespace clothsim
         control.restart(time, control.nominal, end);
         control.next                 = control.nominal;
         unsigned int last_iterations = 0;
+        unsigned int failed_attempts = 0; // since the last accepted step
         while (time < control.target - epsilon)
           {
             stop_if_interrupted(step, time);
@@ -380,6 +381,7 @@ namespace clothsim
               {
                 progress.finish();
                 halve_step(result, time, time_new, step, summary);
+                ++failed_attempts;
                 continue;
               }
 
@@ -398,11 +400,12 @@ namespace clothsim
             figures.newton_iterations = result.iterations;
             figures.linear_iterations = result.linear_iterations;
             figures.residual          = result.residual_norm;
-            figures.retries           = control.halvings;
+            figures.retries           = failed_attempts;
             figures.rejected          = control.rejected;
             figures.error_estimate    = attempt.error_estimate;
             record(step, time, dt_taken, figures, current_energies(), step_times);
             control.rejected = 0;
+            failed_attempts  = 0;
             summary.estimated_error += attempt.error_estimate;
             if (adaptive) // the controller's step replaces any halvings of this one
               control.restart(time, control.next, end);
