@@ -11,7 +11,7 @@
 // below 1e-9 and prints the worst.
 
 #include "physics/bending.h"
-#include "test_support.h"
+#include "test_checks.h"
 
 #include <cmath>
 #include <iostream>
