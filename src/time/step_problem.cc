@@ -25,9 +25,10 @@ namespace clothsim
 
 
   void
-  StepProblem::average_along_path_from(const VectorType &start)
+  StepProblem::average_along_path_from(const VectorType &start, MatrixType &scratch)
   {
-    path_start = &start;
+    path_start    = &start;
+    first_tangent = &scratch;
     model.initialize_owned(owned_point);
     model.initialize_owned(owned_sum);
   }
@@ -95,14 +96,15 @@ namespace clothsim
     // Σ w c ∇²Φ(q_n + c (x - q_n)); each node's projected Hessian is positive
     // semi-definite, so is their sum. The unit diagonal of constrained rows stays one:
     // Σ w c = 1. Both nodes are assembled into J (its assembly keeps the positions it
-    // found in J's value arrays); the first is parked in a copy of the same sparsity.
+    // found in J's value arrays); the first is parked in a copy of the same sparsity
+    // (a deep copy only the first time).
     set_path_point(u, gauss_c[0]);
     model.assemble(ghosted, terms, nullptr, &J);
-    first_tangent.copy_from(J);
+    first_tangent->copy_from(J);
     set_path_point(u, gauss_c[1]);
     model.assemble(ghosted, terms, nullptr, &J);
     J *= gauss_weight * gauss_c[1];
-    J.add(gauss_weight * gauss_c[0], first_tangent);
+    J.add(gauss_weight * gauss_c[0], *first_tangent);
   }
 
 

@@ -31,10 +31,11 @@ namespace clothsim
     // sections.
     StepProblem(const ModelInterface &model, const StepTerms &terms, TimerOutput &timer);
 
-    // From now on the problem is the AVF step from the state `start` (owned, q_n; kept
-    // by reference) with the midpoint x as unknown.
+    // From now on the problem is the AVF step from the state `start` (owned, q_n) with
+    // the midpoint x as unknown; `scratch` (the tangent's sparsity, or empty) holds one
+    // node's Hessian while the other is assembled. Both are kept by reference.
     void
-    average_along_path_from(const VectorType &start);
+    average_along_path_from(const VectorType &start, MatrixType &scratch);
 
     double
     objective(const VectorType &u) override;
@@ -72,8 +73,8 @@ namespace clothsim
     StepTerms                                 terms;
     TimerOutput                              &timer;
     VectorType                                ghosted;
-    const VectorType *path_start = nullptr;   // q_n (owned) of the AVF step, else null
-    VectorType        owned_point, owned_sum; // owned work vectors of the AVF step
-    MatrixType        first_tangent;          // the AVF tangent at the first node
+    const VectorType *path_start = nullptr;    // q_n (owned) of the AVF step, else null
+    VectorType        owned_point, owned_sum;  // owned work vectors of the AVF step
+    MatrixType       *first_tangent = nullptr; // the AVF tangent at the first node
   };
 } // namespace clothsim

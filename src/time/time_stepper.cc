@@ -122,7 +122,7 @@ namespace clothsim
     // error.
     StepProblem problem(model, terms, timer);
     if (parameters.time.integrator == Integrator::average_vector_field)
-      problem.average_along_path_from(u_n);
+      problem.average_along_path_from(u_n, path_tangent);
     if (terms.inertia_weight != tangent_weights.first ||
         terms.damping_weight != tangent_weights.second)
       newton.invalidate_tangent(/*rescaled=*/true);

@@ -12,12 +12,14 @@
 //   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} =
 //   (u_{n+1} - u_n)/dt.
 // BDF2 (variable step) and the implicit midpoint rule are the same minimisation with
-// other weights and centres (see predict_step). Adaptive time steps: every dynamic step
-// gets a local error estimate (error_estimate); with 'Adaptive time steps' a step above
-// the tolerance is rejected and retried with dt (tol/err)^(1/(p+1)) 0.9 (factor 0.2 to
-// 2), and accepted steps propose the next dt the same way. Static mode: the load factor λ
-// goes 1/N, 2/N, ..., 1 (or adaptive increments); each increment minimises W - λ fᵀ u,
-// starting from the secant predictor along the load path.
+// other weights and centres (see predict_step); the average vector field step averages
+// the midpoint rule's potential along the step's path (time/step_problem.h). Adaptive
+// time steps: every dynamic step gets a local error estimate (error_estimate); with
+// 'Adaptive time steps' a step above the tolerance is rejected and retried with dt
+// (tol/err)^(1/(p+1)) 0.9 (factor 0.2 to 2), and accepted steps propose the next dt the
+// same way. Static mode: the load factor λ goes 1/N, 2/N, ..., 1 (or adaptive
+// increments); each increment minimises W - λ fᵀ u, starting from the secant predictor
+// along the load path.
 
 #include "solvers/newton_solver.h"
 #include "time/stepper_core.h"
@@ -133,6 +135,7 @@ namespace clothsim
     };
 
     MatrixType   tangent;
+    MatrixType   path_tangent; // the average vector field's second node (step_problem.h)
     NewtonSolver newton;
     bool         dynamic;
     StepControl  control;
