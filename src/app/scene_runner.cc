@@ -9,6 +9,7 @@
 #include "time/explicit_stepper.h"
 #include "time/time_stepper.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -20,6 +21,40 @@ namespace clothsim
   namespace
   {
     namespace fs = std::filesystem;
+
+    // A parameter file as ParameterHandler prints it (PRM), without the "Obstacle k"
+    // sections that are unused ('Shape = none', their default): eight such sections with
+    // their documentation would triple the file.
+    std::string
+    without_unused_obstacles(const std::string &text)
+    {
+      std::istringstream       in(text);
+      std::string              result, line;
+      std::vector<std::string> block;
+      while (std::getline(in, line))
+        {
+          if (block.empty() && line.rfind("subsection Obstacle ", 0) != 0)
+            {
+              result += line + '\n';
+              continue;
+            }
+          block.push_back(line);
+          if (line != "end")
+            continue;
+          const bool unused =
+            std::any_of(block.begin(), block.end(), [](const std::string &entry) {
+              return std::regex_match(entry, std::regex("\\s*set Shape\\s*= none\\s*"));
+            });
+          if (!unused)
+            for (const std::string &kept : block)
+              result += kept + '\n';
+          else if (!result.empty() && result.back() == '\n' && result.size() > 1 &&
+                   result[result.size() - 2] == '\n')
+            result.pop_back(); // the blank line before the dropped section
+          block.clear();
+        }
+      return result;
+    }
 
     // Creates the directory (an InputError if that is impossible, after removing any
     // parent it created) and removes the frames of an earlier run in it (and any left
@@ -93,7 +128,9 @@ namespace clothsim
           }
       });
       io::write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
-        prm.print_parameters(out, ParameterHandler::PRM);
+        std::ostringstream text;
+        prm.print_parameters(text, ParameterHandler::PRM);
+        out << without_unused_obstacles(text.str());
       });
     }
 

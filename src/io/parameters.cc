@@ -171,6 +171,7 @@ namespace clothsim
     NonlinearSolverParameters::declare_parameters(prm);
     LinearSolverParameters::declare_parameters(prm);
     OutputParameters::declare_parameters(prm);
+    ContactParameters::declare_parameters(prm);
   }
 
   void
@@ -186,6 +187,7 @@ namespace clothsim
     nonlinear_solver.parse_parameters(prm);
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
+    contact.parse_parameters(prm);
   }
 
 
@@ -286,6 +288,15 @@ namespace clothsim
                            "Time/Integrator",
                            "explicit integrators need 'Material/Mass = lumped'");
       }
+    const Integrator integrator = parameters.time.integrator;
+    if (!parameters.contact.obstacles.empty() &&
+        integrator != Integrator::backward_euler && integrator != Integrator::bdf2 &&
+        integrator != Integrator::static_load_steps)
+      throw InputError(file,
+                       "Time/Integrator",
+                       "contact with obstacles needs 'backward euler', 'bdf2' or 'static "
+                       "load steps' (the barrier holds the state solved for, which the "
+                       "midpoint rules and the explicit integrators do not end on)");
     if (mass_spring && !parameters.material.lumped_mass)
       throw InputError(file,
                        "Material/Mass",

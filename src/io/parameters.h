@@ -243,7 +243,40 @@ namespace clothsim
     double             interval; // s; 0: every step
     bool               write_vtk;
     std::vector<Probe> probes;
-    std::string        progress; // "auto", "on", "off"
+    std::string        progress;          // "auto", "on", "off"
+    double             drape_disc_radius; // m; 0: no drape coefficient
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
+  // A rigid obstacle (physics/obstacle.h), as given in a section "Obstacle k".
+  struct ObstacleParameters
+  {
+    std::string  name;
+    std::string  shape; // "plane", "sphere", "capsule", "disc", "box"
+    Point<3>     center;
+    Tensor<1, 3> axis;
+    double       radius;
+    double       half_length;
+    double       disc_radius;
+    Tensor<1, 3> half_extents;
+    double       friction;
+    std::string  translation; // 'x; y; z' expressions of t, m
+    Tensor<1, 3> rotation_axis;
+    std::string  rotation_angle; // an expression of t, rad
+  };
+
+  struct ContactParameters
+  {
+    static constexpr unsigned int max_obstacles = 8;
+
+    double                          thickness;            // d̂, m
+    double                          barrier_acceleration; // a_b, m/s²
+    double                          slip_velocity;        // ε_v, m/s
+    std::vector<ObstacleParameters> obstacles;            // the sections in use
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -263,6 +296,7 @@ namespace clothsim
     NonlinearSolverParameters nonlinear_solver;
     LinearSolverParameters    linear_solver;
     OutputParameters          output;
+    ContactParameters         contact;
 
     static void
     declare_parameters(ParameterHandler &prm);

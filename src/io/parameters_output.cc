@@ -51,6 +51,15 @@ namespace clothsim
       Patterns::Double(0., 1e9),
       "Simulated time in s between VTK frames and probe rows (0: every step). "
       "The first and last states are always written.");
+    prm.declare_entry(
+      "Drape disc radius",
+      "0",
+      Patterns::Double(0.),
+      "m. With a positive radius R, statistics.csv gets the columns projected_area "
+      "(m²: the cloth's shadow on the horizontal plane, folds counted once) and "
+      "drape_coefficient, DC = (A_projected - π R²)/(A_specimen - π R²) with A_specimen "
+      "the cloth's reference area (the Cusick drape test, ISO 9073-9: a specimen on a "
+      "disc of radius R). 0: neither.");
     prm.declare_entry("Write VTK",
                       "true",
                       Patterns::Bool(),
@@ -83,8 +92,9 @@ namespace clothsim
   OutputParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    interval  = prm.get_double("Output interval");
-    write_vtk = prm.get_bool("Write VTK");
+    interval          = prm.get_double("Output interval");
+    write_vtk         = prm.get_bool("Write VTK");
+    drape_disc_radius = prm.get_double("Drape disc radius");
     probes.clear();
     for (const auto &[name, X] : parse_named_triples(prm.get("Probes")))
       probes.push_back({name, Point<3>(X), false, {}});

@@ -39,6 +39,9 @@ namespace clothsim
     const VectorType *predictor         = nullptr; // û (ghosted); needed if w_i > 0
     const VectorType *previous          = nullptr; // u_n (ghosted); needed if w_d > 0
     bool              projected_tangent = true;    // Hessian: projected (PSD) or exact
+    // The time of the state solved for (s; the load factor in static steps): where
+    // moving obstacles are.
+    double time = 0.;
   };
 } // namespace clothsim
 

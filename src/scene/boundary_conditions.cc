@@ -311,7 +311,7 @@ namespace clothsim
                             expressions,
                             {{"pi", numbers::PI}},
                             time_dependent);
-        for (unsigned int c = 0; c < 3; ++c)
+        for (unsigned int c = 0; c < function.n_components; ++c)
           function.value(Point<3>(), c);
         std::cerr.rdbuf(cerr_buffer);
       }
@@ -320,9 +320,10 @@ namespace clothsim
         std::cerr.rdbuf(cerr_buffer);
         throw InputError(parameter_file,
                          entry,
-                         "cannot parse '" + expressions +
-                           "' as three expressions in x, y, z" +
-                           (time_dependent ? ", t" : ""));
+                         "cannot parse '" + expressions + "' as " +
+                           (function.n_components == 1 ? "an expression"
+                                                       : "three expressions") +
+                           " in x, y, z" + (time_dependent ? ", t" : ""));
       }
   }
 } // namespace clothsim

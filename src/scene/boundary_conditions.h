@@ -81,7 +81,8 @@ namespace clothsim
     FunctionParser<3>                 initial_velocity;
   };
 
-  // Parses 'fx; fy; fz' (in x, y, z and, if `time_dependent`, t) into `function` and
+  // Parses 'fx; fy; fz' (or one expression, as `function` has components; in x, y, z
+  // and, if `time_dependent`, t) into `function` and
   // evaluates it once; InputError naming `parameter_file` and `entry` if it fails.
   void
   parse_vector_function(FunctionParser<3> &function,

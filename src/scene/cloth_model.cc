@@ -4,9 +4,11 @@
 
 #include "io/input_error.h"
 #include "mesh/memory_estimate.h"
+#include "mesh/projected_area.h"
 #include "physics/bending_term.h"
 #include "physics/damping.h"
 #include "physics/external_loads.h"
+#include "physics/friction_term.h"
 #include "physics/gravity.h"
 #include "physics/inertia.h"
 #include "physics/membrane_term.h"
@@ -14,7 +16,10 @@
 #include "physics/spring_terms.h"
 #include "physics/strain_limit.h"
 #include "scene/group_loads.h"
+#include "scene/obstacles.h"
 #include "solvers/near_null_space.h"
+
+#include <algorithm>
 
 namespace clothsim
 {
@@ -165,6 +170,28 @@ namespace clothsim
                             boundary_conditions->constraints(),
                             parameter_file,
                             groups)));
+
+    // Contact with rigid obstacles: the barrier, and friction where μ > 0 (dynamic).
+    const ContactParameters &given = parameters.contact;
+    if (!given.obstacles.empty())
+      {
+        VectorType masses;
+        lumped_masses(masses);
+        auto term = std::make_unique<physics::ObstacleContact>(
+          make_obstacles(given, parameter_file),
+          physics::ContactSettings{given.thickness,
+                                   given.barrier_acceleration,
+                                   given.slip_velocity},
+          discretization,
+          masses);
+        contact = term.get();
+        model->add(std::move(term));
+        const bool friction = std::any_of(given.obstacles.begin(),
+                                          given.obstacles.end(),
+                                          [](const auto &o) { return o.friction > 0.; });
+        if (dynamic && friction)
+          model->add(std::make_unique<physics::ObstacleFriction>(*contact));
+      }
   }
 
 
@@ -235,6 +262,17 @@ namespace clothsim
   }
 
 
+  void
+  ClothModel::begin_step(const double      t_n,
+                         const double      t_new,
+                         const VectorType &u_n,
+                         VectorType       &u_new)
+  {
+    if (contact != nullptr)
+      contact->begin_step(t_n, t_new, u_n, u_new, boundary_conditions->constraints());
+  }
+
+
   std::vector<std::string>
   ClothModel::energy_columns() const
   {
@@ -245,6 +283,22 @@ namespace clothsim
           std::find(columns.begin(), columns.end(), term->report_column()) ==
             columns.end())
         columns.push_back(term->report_column());
+    // Contact: the smallest vertex-obstacle distance (m), then per obstacle the force on
+    // the cloth (N) and the vertices within the thickness.
+    if (contact != nullptr)
+      {
+        columns.push_back("contact_min_distance");
+        for (const physics::Obstacle &obstacle : contact->get_obstacles())
+          {
+            std::string name = obstacle.name();
+            std::replace(name.begin(), name.end(), ' ', '_');
+            for (const char *part : {"_force_x", "_force_y", "_force_z", "_contacts"})
+              columns.push_back(name + part);
+          }
+      }
+    if (parameters.output.drape_disc_radius > 0.)
+      for (const char *column : {"projected_area", "drape_coefficient"})
+        columns.push_back(column);
     return columns;
   }
 
@@ -254,7 +308,7 @@ namespace clothsim
                        const VectorType &v,
                        const double      dissipated) const
   {
-    return report(model->energies(u, v), dissipated);
+    return add_step_report(u, report(model->energies(u, v), dissipated));
   }
 
 
@@ -264,7 +318,57 @@ namespace clothsim
                        const double         dissipated,
                        physics::RankVector &damping_force) const
   {
-    return report(model->energies(u, v, &damping_force), dissipated);
+    return add_step_report(u, report(model->energies(u, v, &damping_force), dissipated));
+  }
+
+
+  EnergyReport
+  ClothModel::add_step_report(const VectorType &u, EnergyReport energies) const
+  {
+    // The contact and drape columns are the last ones (energy_columns()).
+    const double drape_radius = parameters.output.drape_disc_radius;
+    std::size_t  column       = energies.columns.size() - (drape_radius > 0. ? 2 : 0);
+    if (contact != nullptr)
+      {
+        const physics::ObstacleContact::Report contacts =
+          contact->report(u, contact->time_of_state());
+        column -= 1 + 4 * contacts.forces.size();
+        energies.columns[column++] = contacts.min_distance;
+        for (unsigned int o = 0; o < contacts.forces.size(); ++o)
+          {
+            for (unsigned int c = 0; c < 3; ++c)
+              energies.columns[column++] = contacts.forces[o][c];
+            energies.columns[column++] = contacts.contacts[o];
+          }
+      }
+    if (drape_radius > 0.)
+      {
+        // The triangles' current (x, y) from every rank, measured on rank 0.
+        std::vector<double>   corners;
+        std::array<double, 9> u_e;
+        for (const auto &element : discretization.elements())
+          for (const Point<3> &x : discretization.current_positions(element, u, u_e))
+            corners.insert(corners.end(), {x[0], x[1]});
+        const MPI_Comm communicator = get_communicator();
+        const auto     all          = Utilities::MPI::gather(communicator, corners, 0);
+        double         area         = 0.;
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          {
+            std::vector<std::array<Point<2>, 3>> triangles;
+            for (const std::vector<double> &part : all)
+              for (std::size_t k = 0; k + 6 <= part.size(); k += 6)
+                triangles.push_back({Point<2>(part[k], part[k + 1]),
+                                     Point<2>(part[k + 2], part[k + 3]),
+                                     Point<2>(part[k + 4], part[k + 5])});
+            area = mesh::projected_area(triangles);
+          }
+        area                       = Utilities::MPI::sum(area, communicator);
+        const double disc          = numbers::PI * drape_radius * drape_radius;
+        energies.columns[column++] = area;
+        energies.columns[column++] =
+          (area - disc) / (discretization.reference_area() - disc);
+      }
+    return energies;
   }
 
 

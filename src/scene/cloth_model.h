@@ -16,6 +16,7 @@
 #include "io/parameters.h"
 #include "mesh/discretization.h"
 #include "mesh/gmsh_reader.h"
+#include "physics/contact_term.h"
 #include "physics/model.h"
 #include "physics/spring_network.h"
 #include "scene/boundary_conditions.h"
@@ -181,6 +182,18 @@ namespace clothsim
       return model->assemble(u, step, gradient, hessian);
     }
     void
+    begin_step(const double      t_n,
+               const double      t_new,
+               const VectorType &u_n,
+               VectorType       &u_new) override;
+    double
+    largest_step(const VectorType &u,
+                 const VectorType &direction,
+                 const double      time) const override
+    {
+      return contact != nullptr ? contact->largest_step(u, direction, time) : 1.;
+    }
+    void
     commit_step(const VectorType &u, VectorType &u_owned) override
     {
       model->commit_step(u, u_owned);
@@ -247,12 +260,17 @@ namespace clothsim
     // terms' column.
     EnergyReport
     report(const physics::Energies &energies, const double dissipated) const;
+    // `energies` with the contact columns (if the scene has obstacles) and the drape
+    // columns (if asked for) filled in at u (ghosted).
+    EnergyReport
+    add_step_report(const VectorType &u, EnergyReport energies) const;
 
     const Parameters                   &parameters;
     mesh::Discretization                discretization;
     std::unique_ptr<BoundaryConditions> boundary_conditions;
     std::unique_ptr<physics::Model>     model;
-    std::shared_ptr<SpringNetwork>      springs; // Model = mass-spring
+    std::shared_ptr<SpringNetwork>      springs;           // Model = mass-spring
+    physics::ObstacleContact           *contact = nullptr; // the model's, if obstacles
     // Inverse lumped masses (ghosted, 0 on pinned dofs), for the strain limit.
     VectorType inverse_masses;
     // This rank's triangles and their vertices' dofs, for the output.

@@ -9,8 +9,11 @@
 
 namespace clothsim
 {
-  EnergyLineSearch::EnergyLineSearch(Objective objective, const unsigned int max_halvings)
+  EnergyLineSearch::EnergyLineSearch(Objective          objective,
+                                     StepCap            cap,
+                                     const unsigned int max_halvings)
     : objective(std::move(objective))
+    , cap(std::move(cap))
     , max_halvings(max_halvings)
   {}
 
@@ -31,7 +34,7 @@ namespace clothsim
     const double noise =
       100. * std::numeric_limits<double>::epsilon() * std::abs(old_value);
 
-    step = 1.;
+    step = std::min(1., cap(old_group.getX(), direction));
     for (unsigned int cut = 0; cut <= max_halvings; ++cut, step *= 0.5)
       {
         group.computeX(old_group, direction, step);

@@ -6,8 +6,8 @@
 // solution the decrease α F·d falls below the round-off of Φ itself (|Φ| ε); there the
 // step is judged by the residual norm instead, so Newton's last iterations are not cut by
 // noise. When no step of the 30 halvings decreases Φ, the search fails with step 0 and
-// Newton with it (the time step is then cut). A later contact model can cap α here
-// (continuous collision check) before the search starts.
+// Newton with it (the time step is then cut). The search starts from the problem's
+// largest admissible step (contact: continuous collision detection), 1 without contact.
 
 #include <NOX_LineSearch_Generic.H>
 #include <NOX_LineSearch_UserDefinedFactory.H>
@@ -21,8 +21,11 @@ namespace clothsim
   public:
     // objective(x): Φ at the group's solution vector x.
     using Objective = std::function<double(const NOX::Abstract::Vector &)>;
+    // cap(x, d): the largest step along d from x that may be tried (<= 1).
+    using StepCap =
+      std::function<double(const NOX::Abstract::Vector &, const NOX::Abstract::Vector &)>;
 
-    EnergyLineSearch(Objective objective, const unsigned int max_halvings);
+    EnergyLineSearch(Objective objective, StepCap cap, const unsigned int max_halvings);
 
     bool
     compute(NOX::Abstract::Group        &group,
@@ -36,6 +39,7 @@ namespace clothsim
 
   private:
     Objective          objective;
+    StepCap            cap;
     const unsigned int max_halvings;
     // Φ at the step accepted last: the next search starts from there (one evaluation
     // saved).

@@ -59,8 +59,9 @@ namespace clothsim
       NewtonSolver::TangentState      &tangent; // outlives the solve
       TimerOutput                     &timer;
       TrilinosVector                   u, rhs, solution;
-      TrilinosVector                   iterate; // where the direction is computed
-      TrilinosVector                   update;  // the last Newton update (status tests)
+      TrilinosVector                   iterate;   // where the direction is computed
+      TrilinosVector                   update;    // the last Newton update (status tests)
+      TrilinosVector                   direction; // the line search's direction
       unsigned int                     linear_iterations   = 0;
       unsigned int                     projected_fallbacks = 0;
       unsigned int                     tangents            = 0;
@@ -438,6 +439,7 @@ namespace clothsim
                     u,
                     u,
                     u,
+                    u,
                     0,
                     0,
                     0,
@@ -484,6 +486,11 @@ namespace clothsim
       [&context](const NOX::Abstract::Vector &x) {
         copy(epetra(x), context.u);
         return context.problem.objective(context.u);
+      },
+      [&context](const NOX::Abstract::Vector &x, const NOX::Abstract::Vector &direction) {
+        copy(epetra(x), context.u);
+        copy(epetra(direction), context.direction);
+        return context.problem.largest_step(context.u, context.direction);
       },
       /*max_halvings=*/30));
     if (parameters.line_search == "full step" || single_step)

@@ -45,6 +45,15 @@ namespace clothsim
             TrilinosWrappers::SparseMatrix      &J,
             const bool                           projected) = 0;
 
+    // The largest step α <= 1 along `direction` from u that the line search may try
+    // (e.g. no contact crossed). Collective.
+    virtual double
+    largest_step(const TrilinosWrappers::MPI::Vector & /*u*/,
+                 const TrilinosWrappers::MPI::Vector & /*direction*/)
+    {
+      return 1.;
+    }
+
     // The size of a Newton update for the step-size convergence test: its largest
     // displacement component (m, over all ranks). The default takes every unknown.
     virtual double

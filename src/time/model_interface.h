@@ -72,6 +72,21 @@ namespace clothsim
              const StepTerms  &step,
              VectorType       *gradient,
              MatrixType       *hessian) const = 0;
+    // Before each attempt of a step from t_n to t_new, after the prediction: contact
+    // moves Newton's initial guess `u_new` (owned) off the obstacles and lags friction
+    // from u_n (owned). Collective.
+    virtual void
+    begin_step(const double      t_n,
+               const double      t_new,
+               const VectorType &u_n,
+               VectorType       &u_new) = 0;
+    // The largest step α <= 1 from u along `direction` (both ghosted) that Newton's
+    // line search may take (contact: continuous collision detection against the
+    // obstacles at `time`). Collective.
+    virtual double
+    largest_step(const VectorType &u,
+                 const VectorType &direction,
+                 const double      time) const = 0;
     // After a converged step at u (ghosted); `u_owned` may change (director re-basing).
     virtual void
     commit_step(const VectorType &u, VectorType &u_owned) = 0;

@@ -21,6 +21,7 @@ namespace clothsim
     , timer(timer)
   {
     model.initialize_ghosted(ghosted);
+    model.initialize_ghosted(ghosted_direction);
   }
 
 
@@ -40,6 +41,15 @@ namespace clothsim
     owned_point = x;
     owned_point.sadd(c, 1. - c, *path_start);
     ghosted = owned_point;
+  }
+
+
+  double
+  StepProblem::largest_step(const VectorType &u, const VectorType &direction)
+  {
+    ghosted           = u;
+    ghosted_direction = direction;
+    return model.largest_step(ghosted, ghosted_direction, terms.time);
   }
 
 

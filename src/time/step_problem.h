@@ -46,6 +46,10 @@ namespace clothsim
     void
     tangent(const VectorType &u, MatrixType &J, const bool projected) override;
 
+    // The model's cap on the line search (contact), the obstacles at the step's time.
+    double
+    largest_step(const VectorType &u, const VectorType &direction) override;
+
     // The largest update of a displacement dof (m).
     double
     update_size(const VectorType &update) const override;
@@ -72,7 +76,7 @@ namespace clothsim
     const ModelInterface                     &model;
     StepTerms                                 terms;
     TimerOutput                              &timer;
-    VectorType                                ghosted;
+    VectorType                                ghosted, ghosted_direction;
     const VectorType *path_start = nullptr;    // q_n (owned) of the AVF step, else null
     VectorType        owned_point, owned_sum;  // owned work vectors of the AVF step
     MatrixType       *first_tangent = nullptr; // the AVF tangent at the first node

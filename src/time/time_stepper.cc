@@ -44,6 +44,7 @@ namespace clothsim
     const bool       midpoint   = solves_for_midpoint(integrator);
     StepTerms        terms;
     terms.load_factor = load_factor;
+    terms.time        = time_new;
     if (!dynamic)
       {
         // Secant predictor along the load path (angles included: the last increment's
@@ -113,6 +114,8 @@ namespace clothsim
       model.prepare_step(u_ghosted);
     const StepTerms terms = predict_step(time_new, dt, load_factor);
     last_terms            = terms;
+    // Contact: Newton starts off the obstacles (and friction is lagged).
+    model.begin_step(time_new - dt, time_new, u_n, u_new);
 
     // solve. A tangent kept by 'modified newton' is one of these weights only. ML's
     // hierarchy recomputed on the aggregates of a differently scaled tangent can fail

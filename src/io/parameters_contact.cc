@@ -1,0 +1,163 @@
+// Sections "Contact" and "Obstacle 1" ... "Obstacle 8": rigid obstacles the cloth
+// touches.
+
+#include <deal.II/base/utilities.h>
+
+#include "io/input_error.h"
+#include "io/parameters.h"
+#include "io/parameters_detail.h"
+
+namespace clothsim
+{
+  using detail::vector_entry;
+
+  namespace
+  {
+    std::string
+    section(const unsigned int k)
+    {
+      return "Obstacle " + std::to_string(k + 1);
+    }
+  } // namespace
+
+
+  void
+  ContactParameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact");
+    prm.declare_entry("Thickness",
+                      "0.005",
+                      Patterns::Double(1e-9, 1.),
+                      "Contact thickness d̂ in m: a cloth vertex closer than this to an "
+                      "obstacle is pushed away by a barrier that grows without bound as "
+                      "the distance goes to zero (IPC's log barrier). Resting cloth sits "
+                      "within it, so it is the visible gap.");
+    prm.declare_entry("Barrier stiffness",
+                      "100",
+                      Patterns::Double(1e-6, 1e12),
+                      "a_b in m/s²: a vertex of mass m pays m a_b/d̂ times the barrier "
+                      "s(d) = -(d - d̂)² ln(d/d̂), so at d = d̂/2 it is pushed with 1.19 m "
+                      "a_b. A vertex resting under gravity g sits where 3 (1 - d/d̂)² is "
+                      "about g/a_b (at 0.82 d̂ for the default).");
+    prm.declare_entry("Static friction velocity",
+                      "1e-3",
+                      Patterns::Double(1e-12, 1e3),
+                      "ε_v in m/s: below this slip velocity friction is static (a stiff "
+                      "spring), above it kinetic (μ times the normal force).");
+    prm.leave_subsection();
+
+    for (unsigned int k = 0; k < max_obstacles; ++k)
+      {
+        prm.enter_subsection(section(k));
+        prm.declare_entry("Shape",
+                          "none",
+                          Patterns::Selection("none|plane|sphere|capsule|disc|box"),
+                          "'plane' (the half-space below it is solid), 'sphere', "
+                          "'capsule' (a cylinder with round ends), 'disc' (a round flat "
+                          "plate with rounded rim, e.g. a table top), 'box' (edges "
+                          "rounded by 'Radius'); 'none': this section is unused.");
+        prm.declare_entry("Name",
+                          "",
+                          Patterns::Anything(),
+                          "For the output; default 'obstacle k'.");
+        prm.declare_entry("Center",
+                          "0, 0, 0",
+                          Patterns::List(Patterns::Double(), 3, 3, ","),
+                          "m: a point on the plane; the centre of the other shapes.");
+        prm.declare_entry("Axis",
+                          "0, 0, 1",
+                          Patterns::List(Patterns::Double(), 3, 3, ","),
+                          "The plane's normal (pointing out of the solid), the capsule's "
+                          "axis, the disc's normal; need not be unit.");
+        prm.declare_entry("Radius",
+                          "0",
+                          Patterns::Double(0.),
+                          "m: of the sphere and the capsule; the rounding of the disc's "
+                          "rim (half its thickness) and of the box's edges.");
+        prm.declare_entry("Half length",
+                          "0",
+                          Patterns::Double(0.),
+                          "m: half the length of the capsule's axis segment.");
+        prm.declare_entry("Disc radius", "0", Patterns::Double(0.), "m: of the disc.");
+        prm.declare_entry("Half extents",
+                          "0, 0, 0",
+                          Patterns::List(Patterns::Double(0.), 3, 3, ","),
+                          "m: of the box's core along x, y, z (the box is that plus "
+                          "'Radius' on every side).");
+        prm.declare_entry("Friction",
+                          "0",
+                          Patterns::Double(0.),
+                          "Coulomb's friction coefficient μ against the cloth.");
+        prm.declare_entry("Translation",
+                          "0; 0; 0",
+                          Patterns::List(Patterns::Anything(), 3, 3, ";"),
+                          "Prescribed motion: 'x; y; z' in m as expressions of t (s), "
+                          "e.g. '0; 0; -0.5*t'.");
+        prm.declare_entry("Rotation axis",
+                          "0, 0, 1",
+                          Patterns::List(Patterns::Double(), 3, 3, ","),
+                          "The axis, through 'Center', of the prescribed rotation.");
+        prm.declare_entry("Rotation angle",
+                          "0",
+                          Patterns::Anything(),
+                          "rad, an expression of t (s), e.g. '2*t'; a constant turns a "
+                          "box.");
+        prm.leave_subsection();
+      }
+  }
+
+
+  void
+  ContactParameters::parse_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Contact");
+    thickness            = prm.get_double("Thickness");
+    barrier_acceleration = prm.get_double("Barrier stiffness");
+    slip_velocity        = prm.get_double("Static friction velocity");
+    prm.leave_subsection();
+
+    obstacles.clear();
+    for (unsigned int k = 0; k < max_obstacles; ++k)
+      {
+        prm.enter_subsection(section(k));
+        ObstacleParameters obstacle;
+        obstacle.shape = prm.get("Shape");
+        if (obstacle.shape != "none")
+          {
+            obstacle.name = prm.get("Name");
+            if (obstacle.name.empty())
+              obstacle.name = "obstacle " + std::to_string(k + 1);
+            obstacle.center         = Point<3>(vector_entry(prm.get("Center")));
+            obstacle.axis           = vector_entry(prm.get("Axis"));
+            obstacle.radius         = prm.get_double("Radius");
+            obstacle.half_length    = prm.get_double("Half length");
+            obstacle.disc_radius    = prm.get_double("Disc radius");
+            obstacle.half_extents   = vector_entry(prm.get("Half extents"));
+            obstacle.friction       = prm.get_double("Friction");
+            obstacle.translation    = prm.get("Translation");
+            obstacle.rotation_axis  = vector_entry(prm.get("Rotation axis"));
+            obstacle.rotation_angle = prm.get("Rotation angle");
+            const std::string where = section(k);
+            if (obstacle.axis.norm() == 0.)
+              throw InputError("", where + "/Axis", "must not be zero");
+            if (obstacle.rotation_axis.norm() == 0.)
+              throw InputError("", where + "/Rotation axis", "must not be zero");
+            const bool needs_radius =
+              obstacle.shape == "sphere" || obstacle.shape == "capsule";
+            if (needs_radius && obstacle.radius <= 0.)
+              throw InputError("",
+                               where + "/Radius",
+                               "a " + obstacle.shape + " needs a positive radius");
+            if (obstacle.shape == "disc" && obstacle.disc_radius <= 0.)
+              throw InputError("",
+                               where + "/Disc radius",
+                               "a disc needs a positive radius");
+            if (obstacle.shape == "box" &&
+                obstacle.half_extents[0] + obstacle.radius <= 0.)
+              throw InputError("", where + "/Half extents", "a box needs a size");
+            obstacles.push_back(obstacle);
+          }
+        prm.leave_subsection();
+      }
+  }
+} // namespace clothsim

@@ -1,0 +1,293 @@
+#include "physics/contact_term.h"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include "mesh/ghosted_values.h"
+#include "physics/contact_potential.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace clothsim::physics
+{
+  namespace
+  {
+    // Two unit vectors spanning the plane perpendicular to the unit n.
+    void
+    tangent_basis(const Tensor<1, 3> &n, Tensor<1, 3> (&t)[2])
+    {
+      Tensor<1, 3> helper;
+      helper[std::abs(n[0]) < 0.9 ? 0 : 1] = 1.;
+      t[0]                                 = helper - (helper * n) * n;
+      t[0] /= t[0].norm();
+      t[1] = cross_product_3d(n, t[0]);
+    }
+
+    std::string
+    describe(const Point<3> &x)
+    {
+      std::ostringstream text;
+      text << "(" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+      return text.str();
+    }
+  } // namespace
+
+
+  ObstacleContact::ObstacleContact(std::vector<Obstacle>       obstacles,
+                                   const ContactSettings      &settings,
+                                   const mesh::Discretization &discretization,
+                                   const VectorType           &lumped_masses)
+    : GlobalTerm("contact", TermKind::constraint)
+    , obstacles(std::move(obstacles))
+    , settings(settings)
+    , discretization(discretization)
+  {
+    VectorType prototype;
+    discretization.initialize_ghosted(prototype);
+    std::set<types::global_dof_index> seen;
+    for (const auto &element : discretization.elements())
+      for (unsigned int v = 0; v < 3; ++v)
+        {
+          const types::global_dof_index first = element.dofs[3 * v];
+          if (!discretization.owned_dofs().is_element(first) ||
+              !seen.insert(first).second)
+            continue;
+          Vertex vertex;
+          for (unsigned int c = 0; c < 3; ++c)
+            {
+              vertex.dofs[c]  = element.dofs[3 * v + c];
+              vertex.local[c] = element.local_dofs[3 * v + c];
+            }
+          vertex.reference = element.reference[v];
+          vertex.kappa =
+            lumped_masses[first] * settings.barrier_acceleration / settings.thickness;
+          table.push_back(vertex);
+        }
+  }
+
+
+  Point<3>
+  ObstacleContact::position(const Vertex &vertex, const double *u_local) const
+  {
+    Point<3> x = vertex.reference;
+    for (unsigned int c = 0; c < 3; ++c)
+      x[c] += u_local[vertex.local[c]];
+    return x;
+  }
+
+
+  double
+  ObstacleContact::add_to_step(const VectorType                &u,
+                               const StepTerms                 &step,
+                               const AffineConstraints<double> &constraints,
+                               VectorType                      *gradient,
+                               MatrixType                      *hessian,
+                               RankVector *) const
+  {
+    state_time          = step.time;
+    const double  d_hat = settings.thickness;
+    const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
+    std::vector<RigidPose> poses;
+    for (const Obstacle &obstacle : obstacles)
+      poses.push_back(obstacle.pose(step.time));
+
+    const bool         derivatives = gradient != nullptr || hessian != nullptr;
+    double             value       = 0.;
+    Vector<double>     g(3);
+    FullMatrix<double> H(3, 3);
+    std::vector<types::global_dof_index> dofs(3);
+    for (const Vertex &vertex : table)
+      {
+        const Point<3> x = position(vertex, local);
+        for (unsigned int o = 0; o < obstacles.size(); ++o)
+          {
+            const SignedDistance d = obstacles[o].distance(poses[o], x, derivatives);
+            if (d.value >= d_hat)
+              continue;
+            value += vertex.kappa * contact::barrier(d.value, d_hat);
+            if (!derivatives || d.value <= 0.)
+              continue;
+            const double first  = vertex.kappa * contact::barrier_first(d.value, d_hat);
+            const double second = vertex.kappa * contact::barrier_second(d.value, d_hat);
+            std::copy(vertex.dofs.begin(), vertex.dofs.end(), dofs.begin());
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                g[i] = first * d.gradient[i];
+                for (unsigned int j = 0; j < 3; ++j)
+                  // κ (s'' ∇d ∇dᵀ + s' ∇²d); s' <= 0 and ∇²d >= 0 make the second
+                  // part negative semi-definite: the projected tangent drops it.
+                  H(i, j) = second * d.gradient[i] * d.gradient[j] +
+                            (step.projected_tangent ? 0. : first * d.hessian[i][j]);
+              }
+            if (gradient != nullptr)
+              constraints.distribute_local_to_global(g, dofs, *gradient);
+            if (hessian != nullptr)
+              constraints.distribute_local_to_global(H, dofs, *hessian);
+          }
+      }
+    return value;
+  }
+
+
+  double
+  ObstacleContact::energy(const VectorType &u, const VectorType &, RankVector *) const
+  {
+    StepTerms step;
+    step.time = state_time;
+    return add_to_step(u, step, AffineConstraints<double>(), nullptr, nullptr, nullptr);
+  }
+
+
+  void
+  ObstacleContact::begin_step(const double                     t_n,
+                              const double                     t_new,
+                              const VectorType                &u_n,
+                              VectorType                      &u_new,
+                              const AffineConstraints<double> &constraints)
+  {
+    last_dt = t_new - t_n;
+    lagged.clear();
+    const double           d_hat = settings.thickness;
+    std::vector<RigidPose> start, end;
+    for (const Obstacle &obstacle : obstacles)
+      {
+        start.push_back(obstacle.pose(t_n));
+        end.push_back(obstacle.pose(t_new));
+      }
+    std::string failure;
+    for (unsigned int k = 0; k < table.size() && failure.empty(); ++k)
+      {
+        const Vertex &vertex = table[k];
+        Point<3>      x_n    = vertex.reference;
+        Point<3>      guess  = vertex.reference;
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            x_n[c] += u_n[vertex.dofs[c]];
+            guess[c] += u_new[vertex.dofs[c]];
+          }
+        const Point<3> given = guess;
+        for (unsigned int o = 0; o < obstacles.size(); ++o)
+          {
+            const double d_n = obstacles[o].distance(start[o], x_n, false).value;
+            if (d_n <= 0.)
+              {
+                failure = "the cloth vertex at " + describe(x_n) + " is on or inside " +
+                          "obstacle '" + obstacles[o].name() +
+                          "' at t = " + std::to_string(t_n) + " s";
+                break;
+              }
+            // The start point carried along the obstacle's motion keeps d_n; the guess
+            // is approached from there on the straight path in the obstacle's frame.
+            const Point<3> carried = end[o].to_world(start[o].to_body(x_n));
+            const double   alpha   = obstacles[o].step_bound(end[o],
+                                                         carried,
+                                                         guess - carried,
+                                                         settings.ccd_fraction);
+            if (alpha < 1. && !constraints.is_constrained(vertex.dofs[0]))
+              guess = carried + alpha * (guess - carried);
+            if (d_n < d_hat && obstacles[o].friction() > 0.)
+              {
+                LaggedContact contact;
+                contact.vertex  = k;
+                contact.carried = carried;
+                tangent_basis(obstacles[o].distance(end[o], carried, true).gradient,
+                              contact.tangent);
+                contact.mu_lambda = obstacles[o].friction() * vertex.kappa *
+                                    std::abs(contact::barrier_first(d_n, d_hat));
+                lagged.push_back(contact);
+              }
+          }
+        if (!failure.empty() || guess == given)
+          continue;
+        for (unsigned int o = 0; o < obstacles.size(); ++o)
+          if (obstacles[o].distance(end[o], guess, false).value <= 0.)
+            failure = "no start for the step to t = " + std::to_string(t_new) +
+                      " s keeps the cloth vertex at " + describe(x_n) +
+                      " outside every obstacle";
+        for (unsigned int c = 0; c < 3; ++c)
+          u_new[vertex.dofs[c]] = guess[c] - vertex.reference[c];
+      }
+    u_new.compress(VectorOperation::insert);
+    const MPI_Comm communicator = discretization.get_communicator();
+    const bool failed = Utilities::MPI::max(failure.empty() ? 0 : 1, communicator) > 0;
+    AssertThrow(!failed,
+                ExcMessage(failure.empty() ? std::string("contact: see another rank")
+                                           : "contact: " + failure));
+  }
+
+
+  double
+  ObstacleContact::largest_step(const VectorType &u,
+                                const VectorType &direction,
+                                const double      time) const
+  {
+    const unsigned int     n_relevant = discretization.relevant_dofs().n_elements();
+    const double          *local      = ghosted_values(u, n_relevant);
+    const double          *step       = ghosted_values(direction, n_relevant);
+    std::vector<RigidPose> poses;
+    for (const Obstacle &obstacle : obstacles)
+      poses.push_back(obstacle.pose(time));
+    double alpha = 1.;
+    for (const Vertex &vertex : table)
+      {
+        const Point<3> x = position(vertex, local);
+        Tensor<1, 3>   dx;
+        for (unsigned int c = 0; c < 3; ++c)
+          dx[c] = step[vertex.local[c]];
+        const double length = dx.norm();
+        if (length == 0.)
+          continue;
+        for (unsigned int o = 0; o < obstacles.size(); ++o)
+          {
+            const double d = obstacles[o].distance(poses[o], x, false).value;
+            // 1-Lipschitz: far enough that the full step cannot come near.
+            if (d - length > settings.ccd_fraction * d)
+              continue;
+            alpha =
+              std::min(alpha,
+                       obstacles[o].step_bound(poses[o], x, dx, settings.ccd_fraction));
+          }
+      }
+    return Utilities::MPI::min(alpha, discretization.get_communicator());
+  }
+
+
+  ObstacleContact::Report
+  ObstacleContact::report(const VectorType &u, const double time) const
+  {
+    const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
+    Report        result{std::numeric_limits<double>::infinity(),
+                  std::vector<Tensor<1, 3>>(obstacles.size()),
+                  std::vector<unsigned int>(obstacles.size(), 0)};
+    for (const Vertex &vertex : table)
+      {
+        const Point<3> x = position(vertex, local);
+        for (unsigned int o = 0; o < obstacles.size(); ++o)
+          {
+            const RigidPose      pose = obstacles[o].pose(time);
+            const SignedDistance d    = obstacles[o].distance(pose, x, true);
+            result.min_distance       = std::min(result.min_distance, d.value);
+            if (d.value >= settings.thickness)
+              continue;
+            ++result.contacts[o];
+            // The force on the cloth, -κ s'(d) ∇d (outward).
+            result.forces[o] -= vertex.kappa *
+                                contact::barrier_first(d.value, settings.thickness) *
+                                d.gradient;
+          }
+      }
+    const MPI_Comm communicator = discretization.get_communicator();
+    result.min_distance         = Utilities::MPI::min(result.min_distance, communicator);
+    for (unsigned int o = 0; o < obstacles.size(); ++o)
+      {
+        for (unsigned int c = 0; c < 3; ++c)
+          result.forces[o][c] = Utilities::MPI::sum(result.forces[o][c], communicator);
+        result.contacts[o] = Utilities::MPI::sum(result.contacts[o], communicator);
+      }
+    return result;
+  }
+} // namespace clothsim::physics

@@ -1,0 +1,159 @@
+#pragma once
+
+// Contact of the cloth's vertices with rigid obstacles as a term of the step's potential:
+// each vertex of mass m within the thickness d̂ of an obstacle pays the barrier
+// κ s(d), κ = m a_b / d̂ (physics/contact_potential.h). The barrier is infinite at
+// d = 0, and Newton's line search is capped (largest_step) so that no iterate comes
+// closer to an obstacle than a tenth of its current distance along the straight path:
+// no iterate ever crosses an obstacle. Obstacles move rigidly; within a step they sit at
+// their pose at the step's time (StepTerms::time), and begin_step() makes Newton's
+// initial guess feasible there by carrying the vertices' step-start positions along the
+// obstacle's motion (see begin_step). The term also lags the friction data (normal force
+// and tangent plane of every contact) for physics/friction_term.h.
+
+#include "mesh/discretization.h"
+#include "physics/obstacle.h"
+#include "physics/term.h"
+
+#include <string>
+#include <vector>
+
+namespace clothsim::physics
+{
+  struct ContactSettings
+  {
+    double thickness;            // d̂, m
+    double barrier_acceleration; // a_b, m/s²
+    double slip_velocity;        // ε_v, m/s: friction is static below it
+    double ccd_fraction = 0.1;   // the line search keeps d >= this share of d(x)
+  };
+
+  // One vertex-obstacle contact as lagged at the start of a step: the point of the
+  // obstacle where the vertex started (carried to the step's end), the tangent plane's
+  // basis there and μ λ (N).
+  struct LaggedContact
+  {
+    unsigned int vertex;
+    Point<3>     carried;
+    Tensor<1, 3> tangent[2];
+    double       mu_lambda;
+  };
+
+  class ObstacleContact : public GlobalTerm
+  {
+  public:
+    // `lumped_masses`: owned vector of each dof's vertex mass (kg).
+    ObstacleContact(std::vector<Obstacle>       obstacles,
+                    const ContactSettings      &settings,
+                    const mesh::Discretization &discretization,
+                    const VectorType           &lumped_masses);
+
+    std::string
+    report_column() const override
+    {
+      return "contact_energy";
+    }
+
+    double
+    add_to_step(const VectorType                &u,
+                const StepTerms                 &step,
+                const AffineConstraints<double> &constraints,
+                VectorType                      *gradient,
+                MatrixType                      *hessian,
+                RankVector                      *dissipative_gradient) const override;
+
+    // The barrier's energy at u, the obstacles at the time of the last step assembled.
+    double
+    energy(const VectorType &u,
+           const VectorType &v,
+           RankVector       *damping_force) const override;
+
+    // Before a step from t_n to t_new: moves `u_new` (owned, Newton's initial guess)
+    // where it is infeasible: each vertex goes from its step-start position carried
+    // along the obstacle's rigid motion (feasible: it keeps its distance) toward the
+    // guess, capped as the line search is. Lags the friction data from u_n (owned).
+    // Constrained (pinned) vertices keep their prescribed guess. Collective. Throws if
+    // a vertex starts on or inside an obstacle.
+    void
+    begin_step(const double                     t_n,
+               const double                     t_new,
+               const VectorType                &u_n,
+               VectorType                      &u_new,
+               const AffineConstraints<double> &constraints);
+
+    // The largest step α <= 1 along `direction` from u (both ghosted) that keeps every
+    // vertex at a tenth of its distance from every obstacle or farther, the obstacles
+    // at `time`. Collective.
+    double
+    largest_step(const VectorType &u,
+                 const VectorType &direction,
+                 const double      time) const;
+
+    // The smallest vertex-obstacle distance at u (ghosted) at `time` (m; +inf with no
+    // obstacle near), and per obstacle the force the barrier exerts on the cloth (N).
+    // Collective.
+    struct Report
+    {
+      double                    min_distance;
+      std::vector<Tensor<1, 3>> forces;
+      std::vector<unsigned int> contacts; // vertices within d̂, per obstacle
+    };
+    Report
+    report(const VectorType &u, const double time) const;
+
+    const std::vector<Obstacle> &
+    get_obstacles() const
+    {
+      return obstacles;
+    }
+    const std::vector<LaggedContact> &
+    lagged_contacts() const
+    {
+      return lagged;
+    }
+    const ContactSettings &
+    get_settings() const
+    {
+      return settings;
+    }
+    // The time of the last step assembled (s): where the obstacles are for energy().
+    double
+    time_of_state() const
+    {
+      return state_time;
+    }
+    // The step's length of the last begin_step (s), for the friction's slip scale.
+    double
+    step_length() const
+    {
+      return last_dt;
+    }
+
+    // One owned vertex: its displacement dofs, their local indices in ghosted vectors,
+    // its reference position and κ = m a_b / d̂ (N/m).
+    struct Vertex
+    {
+      std::array<types::global_dof_index, 3> dofs;
+      std::array<int, 3>                     local;
+      Point<3>                               reference;
+      double                                 kappa;
+    };
+    const std::vector<Vertex> &
+    vertices() const
+    {
+      return table;
+    }
+    // The vertex's current position from a ghosted vector.
+    Point<3>
+    position(const Vertex &vertex, const double *u_local) const;
+
+  private:
+    const std::vector<Obstacle> obstacles;
+    const ContactSettings       settings;
+    const mesh::Discretization &discretization;
+    std::vector<Vertex>         table;
+    std::vector<LaggedContact>  lagged;
+    double                      last_dt    = 0.;
+    mutable double              state_time = 0.; // of the last step assembled
+  };
+} // namespace clothsim::physics

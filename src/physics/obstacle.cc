@@ -1,0 +1,258 @@
+#include "physics/obstacle.h"
+
+#include <deal.II/base/exceptions.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace clothsim::physics
+{
+  namespace
+  {
+    Tensor<2, 3>
+    identity()
+    {
+      Tensor<2, 3> I;
+      for (unsigned int i = 0; i < 3; ++i)
+        I[i][i] = 1.;
+      return I;
+    }
+
+    // The distance to a point q with dq/dy = 0 (or rounded corners): ρ = |y - q|,
+    // ∇ρ = n, ∇²ρ = (I - n nᵀ)/ρ restricted by `free` (dD/dy, a projector).
+    SignedDistance
+    distance_from(const Tensor<1, 3> &D,
+                  const Tensor<2, 3> &free,
+                  const double        radius,
+                  const bool          derivatives)
+    {
+      SignedDistance d;
+      const double   rho = D.norm();
+      d.value            = rho - radius;
+      if (derivatives && rho > 0.)
+        {
+          d.gradient = D / rho;
+          d.hessian  = free * (identity() - outer_product(d.gradient, d.gradient)) * free;
+          d.hessian /= rho;
+        }
+      return d;
+    }
+
+    // A function f(s, h) of the distance s from the axis a (through the origin) and the
+    // height h along it, s = |w - (a·w) a| with e the unit radial direction:
+    //   ∇f = f_s e + f_h a,
+    //   ∇²f = f_ss e eᵀ + f_sh (e aᵀ + a eᵀ) + f_hh a aᵀ + f_s (I - a aᵀ - e eᵀ)/s.
+    // Here f = sqrt((s - s0)² + h²) - r: the distance from the circle of radius s0 in
+    // the plane h = 0, inflated by r, where s > 0.
+    SignedDistance
+    rim_distance(const Tensor<1, 3> &w,
+                 const Tensor<1, 3> &a,
+                 const double        s0,
+                 const double        radius,
+                 const bool          derivatives)
+    {
+      const double       h      = a * w;
+      const Tensor<1, 3> radial = w - h * a;
+      const double       s      = radial.norm();
+      const double       ds = s - s0, dh = h;
+      const double       rho = std::sqrt(ds * ds + dh * dh);
+      SignedDistance     d;
+      d.value = rho - radius;
+      if (!derivatives || rho == 0.)
+        return d;
+      const Tensor<1, 3> e    = radial / s;
+      const double       f_s  = ds / rho;
+      const double       f_h  = dh / rho;
+      const double       rho3 = rho * rho * rho;
+      d.gradient              = f_s * e + f_h * a;
+      d.hessian               = (dh * dh / rho3) * outer_product(e, e) -
+                  (ds * dh / rho3) * (outer_product(e, a) + outer_product(a, e)) +
+                  (ds * ds / rho3) * outer_product(a, a) +
+                  (f_s / s) * (identity() - outer_product(a, a) - outer_product(e, e));
+      return d;
+    }
+  } // namespace
+
+
+  SignedDistance
+  signed_distance(const ObstacleShape &shape, const Point<3> &y, const bool derivatives)
+  {
+    const Tensor<1, 3> w = y - shape.center;
+    const Tensor<1, 3> a = shape.axis;
+    switch (shape.core)
+      {
+          case ObstacleCore::half_space: {
+            SignedDistance d;
+            d.value    = a * w;
+            d.gradient = a;
+            return d;
+          }
+        case ObstacleCore::point:
+          return distance_from(w, identity(), shape.radius, derivatives);
+          case ObstacleCore::segment: {
+            // Beyond the ends: the distance from the end point.
+            // Between the ends: the distance from the axis, D = (I - a aᵀ) w.
+            const double h = a * w;
+            if (std::abs(h) <= shape.half_length)
+              return distance_from(w - h * a,
+                                   identity() - outer_product(a, a),
+                                   shape.radius,
+                                   derivatives);
+            const double end = h > 0. ? shape.half_length : -shape.half_length;
+            return distance_from(w - end * a, identity(), shape.radius, derivatives);
+          }
+          case ObstacleCore::disc: {
+            const double       h      = a * w;
+            const Tensor<1, 3> radial = w - h * a;
+            if (radial.norm() <= shape.disc_radius)
+              {
+                // Above or below the disc: the distance from its plane.
+                SignedDistance d;
+                d.value    = std::abs(h) - shape.radius;
+                d.gradient = h >= 0. ? a : -a;
+                return d;
+              }
+            return rim_distance(w, a, shape.disc_radius, shape.radius, derivatives);
+          }
+          case ObstacleCore::box: {
+            // q = clamp(w, -b, b); D = w - q varies with the clamped components only.
+            Tensor<1, 3> D;
+            Tensor<2, 3> free;
+            bool         inside = true;
+            double       depth  = std::numeric_limits<double>::infinity();
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                const double b = shape.half_extents[i];
+                if (std::abs(w[i]) > b)
+                  {
+                    D[i]       = w[i] - (w[i] > 0. ? b : -b);
+                    free[i][i] = 1.;
+                    inside     = false;
+                  }
+                depth = std::min(depth, b - std::abs(w[i]));
+              }
+            if (!inside)
+              return distance_from(D, free, shape.radius, derivatives);
+            // Inside the core (deep penetration): a negative value suffices.
+            SignedDistance d;
+            d.value = -depth - shape.radius;
+            return d;
+          }
+      }
+    Assert(false, ExcNotImplemented());
+    return {};
+  }
+
+
+  Obstacle::Obstacle(const std::string                        &name,
+                     const ObstacleShape                      &shape,
+                     const double                              friction,
+                     std::function<Tensor<1, 3>(const double)> translation,
+                     const Tensor<1, 3>                       &rotation_axis,
+                     std::function<double(const double)>       angle)
+    : obstacle_name(name)
+    , body_shape(shape)
+    , friction_coefficient(friction)
+    , translation(std::move(translation))
+    , rotation_axis(rotation_axis / rotation_axis.norm())
+    , angle(std::move(angle))
+  {}
+
+
+  RigidPose
+  Obstacle::pose(const double t) const
+  {
+    // Rodrigues: R = cos θ I + sin θ [k]x + (1 - cos θ) k kᵀ.
+    const double        theta = angle(t);
+    const Tensor<1, 3> &k     = rotation_axis;
+    const double        c = std::cos(theta), s = std::sin(theta);
+    RigidPose           pose;
+    pose.rotation = c * identity() + (1. - c) * outer_product(k, k);
+    pose.rotation[0][1] -= s * k[2];
+    pose.rotation[0][2] += s * k[1];
+    pose.rotation[1][0] += s * k[2];
+    pose.rotation[1][2] -= s * k[0];
+    pose.rotation[2][0] -= s * k[1];
+    pose.rotation[2][1] += s * k[0];
+    // x = R (y - c) + c + T.
+    const Tensor<1, 3> center = body_shape.center;
+    pose.translation          = center + translation(t) - pose.rotation * center;
+    return pose;
+  }
+
+
+  SignedDistance
+  Obstacle::distance(const RigidPose &pose,
+                     const Point<3>  &x,
+                     const bool       derivatives) const
+  {
+    SignedDistance d = signed_distance(body_shape, pose.to_body(x), derivatives);
+    if (derivatives)
+      {
+        const Tensor<2, 3> &R = pose.rotation;
+        d.gradient            = R * d.gradient;
+        d.hessian             = R * d.hessian * transpose(R);
+      }
+    return d;
+  }
+
+
+  double
+  Obstacle::step_bound(const RigidPose    &pose,
+                       const Point<3>     &x,
+                       const Tensor<1, 3> &dx,
+                       const double        fraction) const
+  {
+    const Point<3>     y     = pose.to_body(x);
+    const Tensor<1, 3> dy    = transpose(pose.rotation) * dx;
+    const double       d0    = signed_distance(body_shape, y, false).value;
+    const double       level = fraction * d0;
+    // d is 1-Lipschitz: a path shorter than d0 - level cannot reach the level.
+    if (dy.norm() <= d0 - level)
+      return 1.;
+    const auto d = [&](const double s) {
+      return signed_distance(body_shape, Point<3>(y + s * dy), false).value;
+    };
+    if (body_shape.core == ObstacleCore::half_space)
+      {
+        const double rate = body_shape.axis * dy;
+        return rate >= 0. ? 1. : std::min(1., (d0 - level) / -rate);
+      }
+    // d(s) is convex: golden-section search for its minimum on [0, 1].
+    const double golden = 0.5 * (std::sqrt(5.) - 1.);
+    double       lo = 0., hi = 1.;
+    double       m1 = hi - golden * (hi - lo), m2 = lo + golden * (hi - lo);
+    double       f1 = d(m1), f2 = d(m2);
+    for (unsigned int i = 0; i < 60 && hi - lo > 1e-12; ++i)
+      {
+        if (f1 <= f2)
+          {
+            hi = m2;
+            m2 = m1;
+            f2 = f1;
+            m1 = hi - golden * (hi - lo);
+            f1 = d(m1);
+          }
+        else
+          {
+            lo = m1;
+            m1 = m2;
+            f1 = f2;
+            m2 = lo + golden * (hi - lo);
+            f2 = d(m2);
+          }
+      }
+    const double s_min = lo;
+    if (d(s_min) > level && d(1.) > level)
+      return 1.;
+    // The first crossing lies in [0, s_min] (or [0, 1]), where d decreases: bisect.
+    double above = 0., below = d(s_min) <= level ? s_min : 1.;
+    for (unsigned int i = 0; i < 60; ++i)
+      {
+        const double middle                 = 0.5 * (above + below);
+        (d(middle) > level ? above : below) = middle;
+      }
+    return above;
+  }
+} // namespace clothsim::physics

@@ -1,0 +1,129 @@
+#pragma once
+
+// Rigid obstacles for contact. Each shape is a convex core inflated by a radius r, so its
+// signed distance is d(y) = |y - q(y)| - r with q(y) the core's point closest to y:
+//   point   (sphere of radius r),
+//   segment (capsule: a cylinder with hemispherical ends),
+//   disc    (a flat round table top with rounded rim; r = half its thickness),
+//   box     (a box with edges rounded by r),
+// and the half-space below a plane, d(y) = n·(y - c). Outside the core, d is convex and
+// its Hessian positive semi-definite (distance to a convex set). Shapes are given in a
+// body frame; a rigid motion x = R(t) (y - c) + c + T(t) (rotation by an angle θ(t) about
+// a fixed axis through the shape's centre c, then a translation) places them in the
+// world.
+
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+
+#include <functional>
+#include <string>
+
+namespace clothsim::physics
+{
+  using namespace dealii;
+
+  enum class ObstacleCore
+  {
+    half_space,
+    point,
+    segment,
+    disc,
+    box
+  };
+
+  struct ObstacleShape
+  {
+    ObstacleCore core = ObstacleCore::half_space;
+    Point<3>     center; // plane: a point on it; else the core's centre, m
+    Tensor<1, 3> axis;   // unit: the plane's outer normal, the segment's or disc's axis
+    double       half_length = 0.; // segment, m
+    double       disc_radius = 0.; // disc, m
+    Tensor<1, 3> half_extents;     // box, along the body axes, m
+    double       radius = 0.;      // r, m (0 for the plane)
+  };
+
+  // A signed distance (m) with its gradient (unit outside the core) and Hessian.
+  struct SignedDistance
+  {
+    double       value = 0.;
+    Tensor<1, 3> gradient;
+    Tensor<2, 3> hessian;
+  };
+
+  // d at y in the body frame; derivatives only if `derivatives`.
+  SignedDistance
+  signed_distance(const ObstacleShape &shape, const Point<3> &y, const bool derivatives);
+
+  // x = rotation y + translation.
+  struct RigidPose
+  {
+    Tensor<2, 3> rotation;
+    Tensor<1, 3> translation;
+
+    Point<3>
+    to_world(const Point<3> &y) const
+    {
+      return Point<3>(rotation * y + translation);
+    }
+    Point<3>
+    to_body(const Point<3> &x) const
+    {
+      return Point<3>(transpose(rotation) * (x - translation));
+    }
+  };
+
+  class Obstacle
+  {
+  public:
+    // `translation(t)` (m) and `angle(t)` (rad, about `rotation_axis` through the
+    // shape's centre); friction: Coulomb's μ against the cloth.
+    Obstacle(const std::string                        &name,
+             const ObstacleShape                      &shape,
+             const double                              friction,
+             std::function<Tensor<1, 3>(const double)> translation,
+             const Tensor<1, 3>                       &rotation_axis,
+             std::function<double(const double)>       angle);
+
+    const std::string &
+    name() const
+    {
+      return obstacle_name;
+    }
+    double
+    friction() const
+    {
+      return friction_coefficient;
+    }
+    const ObstacleShape &
+    shape() const
+    {
+      return body_shape;
+    }
+
+    RigidPose
+    pose(const double t) const;
+
+    // d and its world-frame derivatives at the world point x, the obstacle at `pose`.
+    SignedDistance
+    distance(const RigidPose &pose, const Point<3> &x, const bool derivatives) const;
+
+    // The largest α in [0, 1] such that d(x + s dx) >= fraction d(x) for all s in
+    // [0, α] (0 < fraction < 1, d(x) > 0): the line search's cap (continuous collision
+    // detection along a straight path, obstacle at `pose`). Conservative: d along the
+    // path is convex for every shape, so after its minimum on [0, 1] is located the first
+    // crossing is bracketed and bisected, and the lower end of the bracket is returned.
+    double
+    step_bound(const RigidPose    &pose,
+               const Point<3>     &x,
+               const Tensor<1, 3> &dx,
+               const double        fraction) const;
+
+  private:
+    const std::string                         obstacle_name;
+    const ObstacleShape                       body_shape;
+    const double                              friction_coefficient;
+    std::function<Tensor<1, 3>(const double)> translation;
+    const Tensor<1, 3>                        rotation_axis; // unit
+    std::function<double(const double)>       angle;
+  };
+} // namespace clothsim::physics

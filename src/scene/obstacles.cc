@@ -1,0 +1,66 @@
+#include "scene/obstacles.h"
+
+#include <deal.II/base/function_parser.h>
+
+#include "scene/boundary_conditions.h"
+
+#include <memory>
+
+namespace clothsim
+{
+  std::vector<physics::Obstacle>
+  make_obstacles(const ContactParameters &parameters, const std::string &parameter_file)
+  {
+    std::vector<physics::Obstacle> obstacles;
+    for (unsigned int k = 0; k < parameters.obstacles.size(); ++k)
+      {
+        const ObstacleParameters &given = parameters.obstacles[k];
+        physics::ObstacleShape    shape;
+        shape.center       = given.center;
+        shape.axis         = given.axis / given.axis.norm();
+        shape.radius       = given.radius;
+        shape.half_length  = given.half_length;
+        shape.disc_radius  = given.disc_radius;
+        shape.half_extents = given.half_extents;
+        shape.core         = given.shape == "plane"    ? physics::ObstacleCore::half_space
+                             : given.shape == "sphere" ? physics::ObstacleCore::point
+                             : given.shape == "capsule" ? physics::ObstacleCore::segment
+                             : given.shape == "disc"    ? physics::ObstacleCore::disc
+                                                        : physics::ObstacleCore::box;
+        if (shape.core == physics::ObstacleCore::half_space)
+          shape.radius = 0.;
+
+        // Expressions of t (x, y, z are there but 0: the motion is rigid).
+        const std::string section     = "Obstacle " + std::to_string(k + 1);
+        auto              translation = std::make_shared<FunctionParser<3>>(3);
+        parse_vector_function(*translation,
+                              given.translation,
+                              true,
+                              parameter_file,
+                              section + "/Translation");
+        auto angle = std::make_shared<FunctionParser<3>>(1);
+        parse_vector_function(*angle,
+                              given.rotation_angle,
+                              true,
+                              parameter_file,
+                              section + "/Rotation angle");
+        obstacles.emplace_back(
+          given.name,
+          shape,
+          given.friction,
+          [translation](const double t) {
+            translation->set_time(t);
+            Tensor<1, 3> value;
+            for (unsigned int c = 0; c < 3; ++c)
+              value[c] = translation->value(Point<3>(), c);
+            return value;
+          },
+          given.rotation_axis,
+          [angle](const double t) {
+            angle->set_time(t);
+            return angle->value(Point<3>());
+          });
+      }
+    return obstacles;
+  }
+} // namespace clothsim

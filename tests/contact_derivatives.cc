@@ -1,0 +1,346 @@
+// Contact kernels and terms against finite differences and their invariants:
+// 1. Signed distances of every obstacle shape (physics/obstacle.h), in a turned and moved
+//    pose: |∇d| = 1 outside, ∇d and ∇²d against central differences (relative 1e-6)
+//    at 200 points per shape between 1 mm and 30 cm outside.
+// 2. The barrier s(d) and the friction f0 (physics/contact_potential.h): derivatives
+//    against central differences; s is C² at d̂, f0 C¹ at ε.
+// 3. The line search's cap (Obstacle::step_bound): on 300 paths per shape, many of them
+//    straight through the obstacle, d stays at or above the fraction of its start along
+//    the whole capped path (sampled at 2,000 points), and the cap is tight (the level is
+//    reached within 1e-9 m of the path's end when the cap is below 1). A path through a
+//    sphere is capped before the sphere.
+// 4. The contact and friction terms of a sheet lying 2 mm above a sphere of radius 1 m
+//    (5 vertices within the thickness; the N = 21
+//    swing mesh): the step potential's gradient and Hessian against central differences
+//    of the potential and of the gradient (relative 1e-5), friction in its static and
+//    kinetic ranges.
+
+#include "extreme_runs.h"
+#include "physics/contact_potential.h"
+#include "physics/contact_term.h"
+#include "physics/friction_term.h"
+#include "physics/model.h"
+#include "scene/scene.h"
+#include "term_checks.h"
+
+#include <random>
+
+using namespace clothsim;
+using namespace clothsim::test;
+using physics::Obstacle;
+using physics::ObstacleCore;
+using physics::ObstacleShape;
+
+namespace
+{
+  std::vector<Obstacle>
+  shapes()
+  {
+    const auto still  = [](const double) { return Tensor<1, 3>(); };
+    const auto moved  = [](const double t) { return Tensor<1, 3>({0.1 * t, -0.2, 0.3}); };
+    const auto turned = [](const double t) { return 0.7 + t; };
+    std::vector<Obstacle> result;
+    ObstacleShape         shape;
+    shape.center = Point<3>(0.1, -0.2, 0.05);
+    shape.axis   = Tensor<1, 3>({0.2, 0.3, 1.}) / Tensor<1, 3>({0.2, 0.3, 1.}).norm();
+    shape.core   = ObstacleCore::half_space;
+    result.emplace_back("plane", shape, 0., moved, Tensor<1, 3>({1., 0., 0.}), turned);
+    shape.core   = ObstacleCore::point;
+    shape.radius = 0.2;
+    result.emplace_back("sphere", shape, 0., moved, Tensor<1, 3>({0., 1., 1.}), turned);
+    shape.core        = ObstacleCore::segment;
+    shape.radius      = 0.05;
+    shape.half_length = 0.3;
+    result.emplace_back("capsule", shape, 0., moved, Tensor<1, 3>({1., 1., 0.}), turned);
+    shape.core        = ObstacleCore::disc;
+    shape.radius      = 0.01;
+    shape.disc_radius = 0.25;
+    result.emplace_back("disc", shape, 0., still, Tensor<1, 3>({0., 1., 0.}), turned);
+    shape.core         = ObstacleCore::box;
+    shape.radius       = 0.02;
+    shape.half_extents = Tensor<1, 3>({0.3, 0.1, 0.2});
+    result.emplace_back("box", shape, 0., moved, Tensor<1, 3>({0., 0., 1.}), turned);
+    return result;
+  }
+
+  // A point between 1 mm and 30 cm outside the obstacle.
+  Point<3>
+  outside(const Obstacle &obstacle, const physics::RigidPose &pose, std::mt19937 &random)
+  {
+    std::uniform_real_distribution<double> box(-0.8, 0.8);
+    for (;;)
+      {
+        const Point<3> x(box(random), box(random), box(random));
+        const double   d = obstacle.distance(pose, x, false).value;
+        if (d > 1e-3 && d < 0.3)
+          return x;
+      }
+  }
+
+  bool
+  check_distances(ConditionalOStream &pcout)
+  {
+    bool         passed = true;
+    std::mt19937 random(7);
+    const double h = 1e-6;
+    for (const Obstacle &obstacle : shapes())
+      {
+        const physics::RigidPose pose       = obstacle.pose(0.4);
+        double                   unit_error = 0., gradient_error = 0., hessian_error = 0.;
+        for (unsigned int sample = 0; sample < 200; ++sample)
+          {
+            const Point<3>                x = outside(obstacle, pose, random);
+            const physics::SignedDistance d = obstacle.distance(pose, x, true);
+            unit_error = std::max(unit_error, std::abs(d.gradient.norm() - 1.));
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                Point<3> plus = x, minus = x;
+                plus[i] += h;
+                minus[i] -= h;
+                const physics::SignedDistance dp = obstacle.distance(pose, plus, true);
+                const physics::SignedDistance dm = obstacle.distance(pose, minus, true);
+                gradient_error =
+                  std::max(gradient_error,
+                           std::abs((dp.value - dm.value) / (2. * h) - d.gradient[i]));
+                const Tensor<1, 3> column = (dp.gradient - dm.gradient) / (2. * h);
+                for (unsigned int j = 0; j < 3; ++j)
+                  hessian_error = std::max(hessian_error,
+                                           std::abs(column[j] - d.hessian[j][i]) /
+                                             std::max(1., d.hessian.norm()));
+              }
+          }
+        const std::string name = obstacle.name();
+        passed &=
+          check_below(pcout, name + ": largest ||grad d| - 1|", unit_error, 1e-12);
+        passed &= check_below(pcout,
+                              name + ": gradient against differences",
+                              gradient_error,
+                              1e-6);
+        passed &=
+          check_below(pcout, name + ": Hessian against differences", hessian_error, 1e-5);
+      }
+    return passed;
+  }
+
+  bool
+  check_potentials(ConditionalOStream &pcout)
+  {
+    namespace contact  = physics::contact;
+    const double d_hat = 0.005, epsilon = 2e-5, h = 1e-9;
+    double       barrier_error = 0., friction_error = 0.;
+    for (unsigned int k = 1; k < 100; ++k)
+      {
+        const double d  = d_hat * k / 100.;
+        barrier_error   = std::max(barrier_error,
+                                 std::abs((contact::barrier(d + h, d_hat) -
+                                           contact::barrier(d - h, d_hat)) /
+                                            (2. * h) -
+                                          contact::barrier_first(d, d_hat)) /
+                                   std::abs(contact::barrier_first(d, d_hat)));
+        barrier_error   = std::max(barrier_error,
+                                 std::abs((contact::barrier_first(d + h, d_hat) -
+                                           contact::barrier_first(d - h, d_hat)) /
+                                            (2. * h) -
+                                          contact::barrier_second(d, d_hat)) /
+                                   std::abs(contact::barrier_second(d, d_hat)));
+        const double y  = 1.5 * epsilon * k / 100.;
+        const double e  = 1e-12;
+        const auto   f1 = [&](const double s) {
+          return contact::friction_f1_over_y(s, epsilon) * s;
+        };
+        friction_error = std::max(friction_error,
+                                  std::abs((contact::friction_f0(y + e, epsilon) -
+                                            contact::friction_f0(y - e, epsilon)) /
+                                             (2. * e) -
+                                           f1(y)));
+        if (std::abs(y - epsilon) > 2. * e)
+          friction_error =
+            std::max(friction_error,
+                     epsilon * std::abs((f1(y + e) - f1(y - e)) / (2. * e) -
+                                        contact::friction_f1_prime(y, epsilon)));
+      }
+    bool passed = check_below(pcout,
+                              "barrier s', s'' against differences (relative)",
+                              barrier_error,
+                              1e-5);
+    passed &=
+      check_below(pcout, "friction f1, f1' against differences", friction_error, 1e-4);
+    const double at_edge = std::abs(contact::barrier(d_hat * (1. - 1e-9), d_hat)) +
+                           std::abs(contact::barrier_first(d_hat * (1. - 1e-9), d_hat)) +
+                           std::abs(contact::barrier_second(d_hat * (1. - 1e-9), d_hat));
+    passed &= check_below(pcout, "s, s', s'' just inside d̂", at_edge, 1e-7);
+    passed &= check_near(pcout,
+                         "f0(ε) (continuous)",
+                         contact::friction_f0(epsilon * (1. - 1e-12), epsilon),
+                         epsilon,
+                         1e-15);
+    passed &=
+      check(pcout, !std::isfinite(contact::barrier(0., d_hat)), "s(0) is infinite");
+    return passed;
+  }
+
+  bool
+  check_step_bounds(ConditionalOStream &pcout)
+  {
+    bool                                   passed = true;
+    std::mt19937                           random(11);
+    std::uniform_real_distribution<double> direction(-1., 1.);
+    const double                           fraction = 0.1;
+    for (const Obstacle &obstacle : shapes())
+      {
+        const physics::RigidPose pose = obstacle.pose(0.4);
+        double       worst = std::numeric_limits<double>::infinity(), slack = 0.;
+        unsigned int capped = 0;
+        for (unsigned int sample = 0; sample < 300; ++sample)
+          {
+            const Point<3> x  = outside(obstacle, pose, random);
+            const double   d0 = obstacle.distance(pose, x, false).value;
+            // Toward and past the obstacle, up to 1 m long.
+            Tensor<1, 3> dx({direction(random), direction(random), direction(random)});
+            const physics::SignedDistance closest = obstacle.distance(pose, x, true);
+            dx -= (1.5 + 0.5 * direction(random)) * closest.gradient;
+            dx *= 0.6;
+            const double alpha = obstacle.step_bound(pose, x, dx, fraction);
+            for (unsigned int k = 0; k <= 2000; ++k)
+              worst = std::min(
+                worst,
+                obstacle.distance(pose, x + (alpha * k / 2000.) * dx, false).value / d0);
+            if (alpha < 1.)
+              {
+                ++capped;
+                slack = std::max(slack,
+                                 obstacle.distance(pose, x + alpha * dx, false).value -
+                                   fraction * d0);
+              }
+          }
+        const std::string name = obstacle.name();
+        pcout << "  " << name << ": " << capped << " of 300 paths capped" << std::endl;
+        passed &= check_at_least(pcout,
+                                 name + ": smallest d / d0 on the capped paths",
+                                 worst,
+                                 fraction * (1. - 1e-12));
+        passed &=
+          check_below(pcout, name + ": d - fraction d0 where capped, m", slack, 1e-9);
+        passed &= check_above(pcout, name + ": paths capped", capped, 50);
+      }
+    // Straight through a sphere: the cap stops before it.
+    ObstacleShape sphere;
+    sphere.core   = ObstacleCore::point;
+    sphere.radius = 0.1;
+    const Obstacle ball(
+      "ball",
+      sphere,
+      0.,
+      [](double) { return Tensor<1, 3>(); },
+      Tensor<1, 3>({0., 0., 1.}),
+      [](double) { return 0.; });
+    const physics::RigidPose pose  = ball.pose(0.);
+    const double             alpha = ball.step_bound(pose,
+                                         Point<3>(0., 0., 0.2),
+                                         Tensor<1, 3>({0., 0., -0.5}),
+                                         fraction);
+    passed &= check_near(pcout,
+                         "cap of a path through a sphere (d from 0.1 m to 0.01 m)",
+                         alpha,
+                         0.18,
+                         1e-9);
+    return passed;
+  }
+
+  bool
+  check_terms(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    const double dt    = 1. / 60.;
+    const auto   scene = load_scene(source_path("params/contact/sheet-on-sphere.prm"),
+                                  {"Mesh/Mesh file=" + mesh,
+                                     "Obstacle 1/Center=0.5, 0.5, -1.002",
+                                     "Obstacle 1/Radius=1",
+                                     "Obstacle 1/Friction=0.4"},
+                                  MPI_COMM_WORLD);
+    const ClothModel &model     = *scene->model;
+    const auto       &mesh_data = model.get_discretization();
+    VectorType        masses;
+    model.lumped_masses(masses);
+    const ContactParameters &given = scene->parameters().contact;
+    physics::ObstacleShape   shape;
+    shape.core   = ObstacleCore::point;
+    shape.center = Point<3>(0.5, 0.5, -1.002);
+    shape.radius = 1.;
+    std::vector<Obstacle> obstacles;
+    obstacles.emplace_back(
+      "ball",
+      shape,
+      0.4,
+      [](double) { return Tensor<1, 3>(); },
+      Tensor<1, 3>({0., 0., 1.}),
+      [](double) { return 0.; });
+    auto contact = std::make_unique<physics::ObstacleContact>(
+      obstacles,
+      physics::ContactSettings{given.thickness,
+                               given.barrier_acceleration,
+                               given.slip_velocity},
+      mesh_data,
+      masses);
+    physics::ObstacleContact &barrier = *contact;
+    physics::Model            terms(mesh_data, model.get_constraints());
+    terms.add(std::move(contact));
+    terms.add(std::make_unique<physics::ObstacleFriction>(barrier));
+
+    VectorType u_n, u_new, u, d;
+    for (VectorType *vector : {&u_n, &u_new, &u, &d})
+      model.initialize_owned(*vector);
+    barrier.begin_step(0., dt, u_n, u_new, model.get_constraints());
+    pcout << "  " << barrier.lagged_contacts().size() << " vertices in contact"
+          << std::endl;
+    bool passed =
+      check_above(pcout, "lagged contacts", barrier.lagged_contacts().size(), 0.5);
+    StepTerms step;
+    step.time = dt;
+    for (const bool projected : {false, true})
+      for (const double slip : {2e-6, 2e-3})
+        {
+          // Within 1 mm of the start (d stays in (1 mm, d̂)); slips below and above ε.
+          fill(model, u, slip, 0., 3);
+          fill(model, d, 1., 0., 5);
+          step.projected_tangent = projected;
+          const Derivatives D    = derivatives(terms, model, step, u, d, 1e-3 * slip);
+          const std::string what = std::string(projected ? "projected" : "exact") +
+                                   ", slips of " + std::to_string(slip) + " m: ";
+          passed &= check_below(pcout,
+                                what + "gradient against differences",
+                                D.gradient_error,
+                                1e-5);
+          if (!projected)
+            passed &= check_below(pcout,
+                                  what + "Hessian against differences",
+                                  D.hessian_error,
+                                  1e-5);
+          else
+            passed &= check_above(pcout,
+                                  what + "d·H d of the projected tangent",
+                                  D.curvature,
+                                  0.);
+        }
+    return passed;
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Environment                 env(argc, argv);
+  ConditionalOStream         &pcout = env.pcout;
+  const std::filesystem::path root  = scratch_directory("clothsim-contact-derivatives");
+  pcout << "1. signed distances" << std::endl;
+  bool passed = check_distances(pcout);
+  pcout << "2. barrier and friction potentials" << std::endl;
+  passed &= check_potentials(pcout);
+  pcout << "3. the line search's cap" << std::endl;
+  passed &= check_step_bounds(pcout);
+  pcout << "4. contact and friction terms" << std::endl;
+  passed &=
+    check_terms(pcout,
+                scratch_mesh(root / "mesh", {"swing-21.geo", "swing-grid.geo.inc"}));
+  return finish(pcout, passed);
+}

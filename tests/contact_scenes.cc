@@ -1,0 +1,235 @@
+// Contact with obstacles in whole runs, against closed forms and invariants. The sheet is
+// params/contact/sheet-on-sphere.prm (1 m², cotton, 0.1 kg) on the N = 21 swing mesh
+// (generated in the scratch directory); every run's statistics.csv must show every
+// vertex outside every obstacle at every step (contact_min_distance > 0).
+// 1. On an incline (gravity turned by θ, a plane 4 mm below, μ = 0.3), the sheet slides
+//    with a = g (sin θ - μ cos θ) when tan θ > μ (θ = 30°: 2.3561 m/s², within 1 %,
+//    from the second difference of the centre's displacement at 0.2, 0.4, 0.6 s); it
+//    sticks when tan θ <= μ (θ = 10°): it creeps less than ε_v t (the static friction's
+//    slip velocity times the time).
+// 2. At rest on a plane (backward Euler, 1 s, Newton solved tightly), the barrier carries
+//    the weight: the plane's force on the sheet equals m g within 1e-6.
+// 3. A fast obstacle (a sphere of radius 10 cm rising at 15 m/s, 25 cm per step: it would
+//    pass through the sheet within one step without the continuous collision detection)
+//    hits the sheet from below and carries it: after 0.1 s (1.5 m) the sheet's centre is
+//    above the sphere's top. (The sphere is larger than the mesh's triangles: contact is
+//    between the cloth's vertices and an analytic obstacle, so a sphere smaller than a
+//    few triangles could pass between the vertices.)
+// 4. The shipped scene (N = 21, 1.5 s): the sheet comes to rest on top of the sphere, its
+//    centre within the contact thickness of the sphere's top, with no step halvings.
+// 5. The Cusick drape (params/contact/cusick-drape.prm), first 0.2 s: the flat specimen's
+//    drape coefficient is 1 within 1e-4 (the projected area's sampling error), and it
+//    falls as the specimen drapes over the disc.
+
+#include "extreme_runs.h"
+
+using namespace clothsim;
+using namespace clothsim::test;
+
+namespace
+{
+  namespace fs = std::filesystem;
+
+  const fs::path root = scratch_directory("clothsim-contact-scenes");
+
+  // The centre probe's displacement at the output time closest to t.
+  Tensor<1, 3>
+  centre_at(const fs::path &directory, const double t)
+  {
+    const Csv    probes = read_csv((directory / "probes.csv").string());
+    double       best   = std::numeric_limits<double>::infinity();
+    Tensor<1, 3> u;
+    for (unsigned int r = 0; r < probes.rows.size(); ++r)
+      if (probes.rows[r][probes.column("probe")] == "center" &&
+          std::abs(probes.number(r, "time") - t) < best)
+        {
+          best = std::abs(probes.number(r, "time") - t);
+          u    = Tensor<1, 3>(
+            {probes.number(r, "ux"), probes.number(r, "uy"), probes.number(r, "uz")});
+        }
+    return u;
+  }
+
+  // Runs the scene; checks that it finished and that no vertex ever reached an obstacle.
+  bool
+  run(ConditionalOStream             &pcout,
+      const std::string              &name,
+      const std::vector<std::string> &overrides,
+      GuardedRun                     &result)
+  {
+    result      = run_guarded(pcout,
+                         source_path("params/contact/sheet-on-sphere.prm"),
+                         join(overrides, {"Output/Progress=off"}),
+                         root / name,
+                         MPI_COMM_WORLD);
+    bool passed = result.passed;
+    passed &=
+      check_above(pcout, name + ": finished (1) or stopped (0)", result.finished, 0.5);
+    if (!result.files_read)
+      return false;
+    const Csv statistics = read_csv((root / name / "statistics.csv").string());
+    double    closest    = std::numeric_limits<double>::infinity();
+    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
+    passed &=
+      check_above(pcout, name + ": smallest vertex-obstacle distance, m", closest, 0.);
+    return passed;
+  }
+
+  std::vector<std::string>
+  incline(const std::string &mesh, const double theta)
+  {
+    const double g = 9.81;
+    return {"Mesh/Mesh file=" + mesh,
+            "Obstacle 1/Shape=plane",
+            "Obstacle 1/Center=0, 0, -0.004",
+            "Obstacle 1/Axis=0, 0, 1",
+            "Obstacle 1/Friction=0.3",
+            "Loads/Gravity=" + number(g * std::sin(theta)) + ", 0, " +
+              number(-g * std::cos(theta)),
+            "Time/End time=0.6"};
+  }
+
+  bool
+  check_incline(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    const double pi = numbers::PI, g = 9.81, mu = 0.3;
+    GuardedRun   sliding, sticking;
+    bool         passed = run(pcout, "sliding", incline(mesh, pi / 6.), sliding);
+    passed &= run(pcout, "sticking", incline(mesh, pi / 18.), sticking);
+    if (!passed)
+      return false;
+    const double h        = 0.2;
+    const double x1       = centre_at(root / "sliding", 0.2)[0],
+                 x2       = centre_at(root / "sliding", 0.4)[0],
+                 x3       = centre_at(root / "sliding", 0.6)[0];
+    const double a        = (x3 - 2. * x2 + x1) / (h * h);
+    const double expected = g * (std::sin(pi / 6.) - mu * std::cos(pi / 6.));
+    passed &= check_near(pcout,
+                         "sliding: acceleration along the incline, m/s²",
+                         a,
+                         expected,
+                         0.01 * expected);
+    const double creep = centre_at(root / "sticking", 0.6).norm();
+    passed &=
+      check_below(pcout, "sticking: |u| of the centre after 0.6 s, m", creep, 1e-3 * 0.6);
+    return passed;
+  }
+
+  bool
+  check_resting(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    GuardedRun result;
+    bool       passed = run(pcout,
+                      "resting",
+                      {"Mesh/Mesh file=" + mesh,
+                             "Obstacle 1/Shape=plane",
+                             "Obstacle 1/Center=0, 0, -0.004",
+                             "Obstacle 1/Axis=0, 0, 1",
+                             "Time/Integrator=backward euler",
+                             "Time/End time=1",
+                             "Nonlinear solver/Truncation error fraction=0",
+                             "Nonlinear solver/Displacement tolerance=1e-13",
+                             "Nonlinear solver/Absolute tolerance=1e-13"},
+                      result);
+    if (!passed)
+      return false;
+    const Csv    statistics = read_csv((root / "resting" / "statistics.csv").string());
+    const double force  = statistics.number(statistics.rows.size() - 1, "ball_force_z");
+    const double weight = 0.1 * 9.81;
+    passed &= check_near(
+      pcout, "resting: the plane's force on the sheet / (m g)", force / weight, 1., 1e-6);
+    return passed;
+  }
+
+  bool
+  check_fast_obstacle(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    GuardedRun result;
+    bool       passed = run(pcout,
+                      "fast obstacle",
+                      {"Mesh/Mesh file=" + mesh,
+                             "Obstacle 1/Radius=0.1",
+                             "Obstacle 1/Center=0.5, 0.5, -0.15",
+                             "Obstacle 1/Translation=0; 0; 15*t",
+                             "Time/End time=0.1"},
+                      result);
+    if (!passed)
+      return false;
+    const double top = -0.15 + 15. * 0.1 + 0.1;
+    passed &=
+      check_above(pcout,
+                  "fast obstacle: the centre's height - the sphere's top at 0.1 s, m",
+                  centre_at(root / "fast obstacle", 0.1)[2] - top,
+                  0.);
+    return passed;
+  }
+
+  bool
+  check_sphere(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    GuardedRun result;
+    bool       passed = run(pcout, "sphere", {"Mesh/Mesh file=" + mesh}, result);
+    if (!passed)
+      return false;
+    passed &= check_below(pcout, "sphere: step halvings", result.summary.retries, 0.5);
+    // The sphere's top is 5 cm below the sheet; the centre vertex rests within d̂ of it.
+    const double gap = centre_at(root / "sphere", 1.5)[2] + 0.05;
+    passed &= check_above(pcout, "sphere: gap at the top at 1.5 s, m", gap, 0.);
+    passed &= check_below(pcout, "sphere: gap at the top at 1.5 s, m", gap, 0.005);
+    return passed;
+  }
+
+  bool
+  check_drape(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    const GuardedRun result =
+      run_guarded(pcout,
+                  source_path("params/contact/cusick-drape.prm"),
+                  {"Mesh/Mesh file=" + mesh, "Time/End time=0.2", "Output/Progress=off"},
+                  root / "drape",
+                  MPI_COMM_WORLD);
+    bool passed = result.passed && result.files_read;
+    if (!passed)
+      return false;
+    const Csv statistics       = read_csv((root / "drape" / "statistics.csv").string());
+    const unsigned int last    = statistics.rows.size() - 1;
+    double             closest = std::numeric_limits<double>::infinity();
+    for (unsigned int r = 0; r <= last; ++r)
+      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
+    passed &=
+      check_above(pcout, "drape: smallest vertex-obstacle distance, m", closest, 0.);
+    passed &= check_near(pcout,
+                         "drape: DC of the flat specimen",
+                         statistics.number(0, "drape_coefficient"),
+                         1.,
+                         1e-4);
+    passed &= check_below(pcout,
+                          "drape: DC at 0.2 s",
+                          statistics.number(last, "drape_coefficient"),
+                          0.9);
+    return passed;
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Environment         env(argc, argv);
+  const std::string   specimen = scratch_mesh(root / "specimen", {"cusick-specimen.geo"});
+  ConditionalOStream &pcout    = env.pcout;
+  const std::string   mesh =
+    scratch_mesh(root / "mesh", {"swing-21.geo", "swing-grid.geo.inc"});
+  pcout << "1. a sheet on an incline with friction" << std::endl;
+  bool passed = check_incline(pcout, mesh);
+  pcout << "2. a sheet at rest on a plane" << std::endl;
+  passed &= check_resting(pcout, mesh);
+  pcout << "3. a fast obstacle" << std::endl;
+  passed &= check_fast_obstacle(pcout, mesh);
+  pcout << "4. a sheet falling onto a sphere" << std::endl;
+  passed &= check_sphere(pcout, mesh);
+  pcout << "5. the Cusick drape test, first 0.2 s" << std::endl;
+  passed &= check_drape(pcout, specimen);
+  return finish(pcout, passed);
+}
