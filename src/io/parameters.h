@@ -276,6 +276,7 @@ namespace clothsim
     double                          thickness;            // d̂, m
     double                          barrier_acceleration; // a_b, m/s²
     double                          slip_velocity;        // ε_v, m/s
+    unsigned int                    friction_updates;     // solves per step
     std::vector<ObstacleParameters> obstacles;            // the sections in use
 
     static void

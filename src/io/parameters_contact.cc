@@ -44,6 +44,14 @@ namespace clothsim
                       Patterns::Double(1e-12, 1e3),
                       "ε_v in m/s: below this slip velocity friction is static (a stiff "
                       "spring), above it kinetic (μ times the normal force).");
+    prm.declare_entry(
+      "Friction updates",
+      "1",
+      Patterns::Integer(1, 100),
+      "1: friction's normal forces and tangent planes are lagged from the "
+      "step's start (IPC). k > 1: after each converged solve they are taken "
+      "again at the solution and the step is solved again, until they "
+      "change by less than 0.1 % of the largest or after k solves.");
     prm.leave_subsection();
 
     for (unsigned int k = 0; k < max_obstacles; ++k)
@@ -114,6 +122,7 @@ namespace clothsim
     thickness            = prm.get_double("Thickness");
     barrier_acceleration = prm.get_double("Barrier stiffness");
     slip_velocity        = prm.get_double("Static friction velocity");
+    friction_updates     = prm.get_integer("Friction updates");
     prm.leave_subsection();
 
     obstacles.clear();

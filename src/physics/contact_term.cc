@@ -151,6 +151,7 @@ namespace clothsim::physics
   {
     last_dt = t_new - t_n;
     lagged.clear();
+    carried_points.assign(table.size() * obstacles.size(), Point<3>());
     const double           d_hat = settings.thickness;
     std::vector<RigidPose> start, end;
     for (const Obstacle &obstacle : obstacles)
@@ -158,6 +159,7 @@ namespace clothsim::physics
         start.push_back(obstacle.pose(t_n));
         end.push_back(obstacle.pose(t_new));
       }
+    end_poses = end;
     std::string failure;
     for (unsigned int k = 0; k < table.size() && failure.empty(); ++k)
       {
@@ -183,7 +185,8 @@ namespace clothsim::physics
             // The start point carried along the obstacle's motion keeps d_n; the guess
             // is approached from there on the straight path in the obstacle's frame.
             const Point<3> carried = end[o].to_world(start[o].to_body(x_n));
-            const double   alpha   = obstacles[o].step_bound(end[o],
+            carried_points[k * obstacles.size() + o] = carried;
+            const double alpha                       = obstacles[o].step_bound(end[o],
                                                          carried,
                                                          guess - carried,
                                                          settings.ccd_fraction);
@@ -192,8 +195,9 @@ namespace clothsim::physics
             if (d_n < d_hat && obstacles[o].friction() > 0.)
               {
                 LaggedContact contact;
-                contact.vertex  = k;
-                contact.carried = carried;
+                contact.vertex   = k;
+                contact.obstacle = o;
+                contact.carried  = carried;
                 tangent_basis(obstacles[o].distance(end[o], carried, true).gradient,
                               contact.tangent);
                 contact.mu_lambda = obstacles[o].friction() * vertex.kappa *
@@ -217,6 +221,45 @@ namespace clothsim::physics
     AssertThrow(!failed,
                 ExcMessage(failure.empty() ? std::string("contact: see another rank")
                                            : "contact: " + failure));
+  }
+
+
+  double
+  ObstacleContact::relag_friction(const VectorType &u)
+  {
+    const double  d_hat = settings.thickness;
+    const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
+    const unsigned int  n_obstacles = obstacles.size();
+    std::vector<double> before(table.size() * n_obstacles, 0.);
+    for (const LaggedContact &contact : lagged)
+      before[contact.vertex * n_obstacles + contact.obstacle] = contact.mu_lambda;
+    lagged.clear();
+    double largest = 0., change = 0.;
+    for (unsigned int k = 0; k < table.size(); ++k)
+      for (unsigned int o = 0; o < n_obstacles; ++o)
+        {
+          const Point<3>                x = position(table[k], local);
+          const physics::SignedDistance d = obstacles[o].distance(end_poses[o], x, true);
+          double                        mu_lambda = 0.;
+          if (d.value < d_hat && obstacles[o].friction() > 0.)
+            {
+              LaggedContact contact;
+              contact.vertex   = k;
+              contact.obstacle = o;
+              contact.carried  = carried_points[k * n_obstacles + o];
+              tangent_basis(d.gradient, contact.tangent);
+              mu_lambda = contact.mu_lambda =
+                obstacles[o].friction() * table[k].kappa *
+                std::abs(contact::barrier_first(d.value, d_hat));
+              lagged.push_back(contact);
+            }
+          largest = std::max({largest, mu_lambda, before[k * n_obstacles + o]});
+          change  = std::max(change, std::abs(mu_lambda - before[k * n_obstacles + o]));
+        }
+    const MPI_Comm communicator = discretization.get_communicator();
+    largest                     = Utilities::MPI::max(largest, communicator);
+    change                      = Utilities::MPI::max(change, communicator);
+    return largest > 0. ? change / largest : 0.;
   }
 
 

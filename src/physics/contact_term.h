@@ -34,6 +34,7 @@ namespace clothsim::physics
   struct LaggedContact
   {
     unsigned int vertex;
+    unsigned int obstacle;
     Point<3>     carried;
     Tensor<1, 3> tangent[2];
     double       mu_lambda;
@@ -80,6 +81,13 @@ namespace clothsim::physics
                const VectorType                &u_n,
                VectorType                      &u_new,
                const AffineConstraints<double> &constraints);
+
+    // Friction solved further (IPC's lagged iterations): takes the normal forces and
+    // tangent planes again at u (ghosted, a solution of the step), the slip still
+    // measured from the step's start. Returns the largest change of a contact's μ λ over
+    // the largest μ λ (1 if contacts appear where there were none). Collective.
+    double
+    relag_friction(const VectorType &u);
 
     // The largest step α <= 1 along `direction` from u (both ghosted) that keeps every
     // vertex at a tenth of its distance from every obstacle or farther, the obstacles
@@ -153,7 +161,11 @@ namespace clothsim::physics
     const mesh::Discretization &discretization;
     std::vector<Vertex>         table;
     std::vector<LaggedContact>  lagged;
-    double                      last_dt    = 0.;
-    mutable double              state_time = 0.; // of the last step assembled
+    // Per vertex and obstacle (vertex-major), the step-start position carried along with
+    // the obstacle to the step's end, and the obstacles' poses there.
+    std::vector<Point<3>>  carried_points;
+    std::vector<RigidPose> end_poses;
+    double                 last_dt    = 0.;
+    mutable double         state_time = 0.; // of the last step assembled
   };
 } // namespace clothsim::physics

@@ -187,6 +187,11 @@ namespace clothsim
                const VectorType &u_n,
                VectorType       &u_new) override;
     double
+    relag_friction(const VectorType &u) override
+    {
+      return contact != nullptr ? contact->relag_friction(u) : 0.;
+    }
+    double
     largest_step(const VectorType &u,
                  const VectorType &direction,
                  const double      time) const override

@@ -80,6 +80,11 @@ namespace clothsim
                const double      t_new,
                const VectorType &u_n,
                VectorType       &u_new) = 0;
+    // Friction solved further: its normal forces and tangent planes taken again at the
+    // step's solution u (ghosted); returns their largest relative change (0 without
+    // friction). Collective.
+    virtual double
+    relag_friction(const VectorType &u) = 0;
     // The largest step α <= 1 from u along `direction` (both ghosted) that Newton's
     // line search may take (contact: continuous collision detection against the
     // obstacles at `time`). Collective.

@@ -144,6 +144,24 @@ namespace clothsim
     attempt.newton = newton.solve(problem, u_new, newton_floor);
     if (!attempt.newton.converged)
       return attempt;
+    // 'Contact/Friction updates': friction's normal forces taken again at the solution
+    // and the step solved again, until they settle (0.1 %).
+    for (unsigned int update = 1; update < parameters.contact.friction_updates; ++update)
+      {
+        check_ghosted = u_new;
+        if (model.relag_friction(check_ghosted) < 1e-3)
+          break;
+        newton.invalidate_tangent();
+        const NewtonResult again = newton.solve(problem, u_new, newton_floor);
+        attempt.newton.iterations += again.iterations;
+        attempt.newton.linear_iterations += again.linear_iterations;
+        attempt.newton.tangents += again.tangents;
+        attempt.newton.converged     = again.converged;
+        attempt.newton.residual_norm = again.residual_norm;
+        attempt.newton.failure       = again.failure;
+        if (!again.converged)
+          return attempt;
+      }
 
     // The work against damping is taken at the solved iterate (the midpoint's x).
     if (dynamic && model.has_dissipation())
