@@ -26,6 +26,10 @@
 // 6. The Cusick drape (params/contact/cusick-drape.prm), first 0.2 s: the flat specimen's
 //    drape coefficient is 1 within 1e-4 (the projected area's sampling error), and it
 //    falls as the specimen drapes over the disc.
+// 7. Pinned corners driven into a plane (1 m/s down, the plane 2 cm below): the barrier
+//    cannot hold prescribed vertices, so as they near the plane Newton fails down to the
+//    smallest step and the run stops (a SimulationError), keeping its output, with every
+//    vertex outside the plane in every row written.
 
 #include "extreme_runs.h"
 
@@ -257,6 +261,36 @@ namespace
       }
     return passed;
   }
+
+  bool
+  check_pins_into_plane(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    const GuardedRun result =
+      run_guarded(pcout,
+                  source_path("params/contact/sheet-on-sphere.prm"),
+                  {"Mesh/Mesh file=" + mesh,
+                   "Constraints/Pinned groups=pinned",
+                   "Constraints/Pinned displacement=0; 0; -t",
+                   "Obstacle 1/Shape=plane",
+                   "Obstacle 1/Center=0, 0, -0.02",
+                   "Obstacle 1/Axis=0, 0, 1",
+                   "Time/End time=0.2",
+                   "Output/Progress=off"},
+                  root / "pins into plane",
+                  MPI_COMM_WORLD);
+    bool passed = check(pcout, result.stopped, "pins into a plane: the run stops");
+    passed &= check_above(pcout, "pins into a plane: steps written", result.steps, 0.5);
+    if (!result.files_read)
+      return false;
+    const Csv statistics =
+      read_csv((root / "pins into plane" / "statistics.csv").string());
+    double closest = std::numeric_limits<double>::infinity();
+    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
+    passed &=
+      check_above(pcout, "pins into a plane: smallest distance written, m", closest, 0.);
+    return passed;
+  }
 } // namespace
 
 
@@ -280,5 +314,7 @@ main(int argc, char **argv)
   passed &= check_rotating_sphere(pcout, mesh);
   pcout << "6. the Cusick drape test, first 0.2 s" << std::endl;
   passed &= check_drape(pcout, specimen);
+  pcout << "7. pins driven into a plane" << std::endl;
+  passed &= check_pins_into_plane(pcout, mesh);
   return finish(pcout, passed);
 }

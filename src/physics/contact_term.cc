@@ -142,7 +142,7 @@ namespace clothsim::physics
   }
 
 
-  void
+  std::string
   ObstacleContact::begin_step(const double                     t_n,
                               const double                     t_new,
                               const VectorType                &u_n,
@@ -216,11 +216,45 @@ namespace clothsim::physics
           u_new[vertex.dofs[c]] = guess[c] - vertex.reference[c];
       }
     u_new.compress(VectorOperation::insert);
-    const MPI_Comm communicator = discretization.get_communicator();
-    const bool failed = Utilities::MPI::max(failure.empty() ? 0 : 1, communicator) > 0;
-    AssertThrow(!failed,
-                ExcMessage(failure.empty() ? std::string("contact: see another rank")
-                                           : "contact: " + failure));
+    return first_message(failure);
+  }
+
+
+  std::string
+  ObstacleContact::first_message(const std::string &local) const
+  {
+    // The message of the lowest rank that has one.
+    const MPI_Comm     communicator = discretization.get_communicator();
+    const unsigned int rank         = Utilities::MPI::this_mpi_process(communicator);
+    const unsigned int first =
+      Utilities::MPI::min(local.empty() ? std::numeric_limits<unsigned int>::max() : rank,
+                          communicator);
+    if (first == std::numeric_limits<unsigned int>::max())
+      return "";
+    return Utilities::MPI::broadcast(communicator, local, first);
+  }
+
+
+  std::string
+  ObstacleContact::penetration(const VectorType &u, const double time) const
+  {
+    std::string found;
+    for (const Vertex &vertex : table)
+      {
+        Point<3> x = vertex.reference;
+        for (unsigned int c = 0; c < 3; ++c)
+          x[c] += u[vertex.dofs[c]];
+        for (const Obstacle &obstacle : obstacles)
+          {
+            const double d = obstacle.distance(obstacle.pose(time), x, false).value;
+            if (d <= 0. && found.empty())
+              found = "the cloth vertex at " + describe(x) +
+                      " is on or inside obstacle '" + obstacle.name() +
+                      "' (d = " + std::to_string(d) +
+                      " m) at t = " + std::to_string(time) + " s";
+          }
+      }
+    return first_message(found);
   }
 
 

@@ -73,9 +73,10 @@ namespace clothsim::physics
     // where it is infeasible: each vertex goes from its step-start position carried
     // along the obstacle's rigid motion (feasible: it keeps its distance) toward the
     // guess, capped as the line search is. Lags the friction data from u_n (owned).
-    // Constrained (pinned) vertices keep their prescribed guess. Collective. Throws if
-    // a vertex starts on or inside an obstacle.
-    void
+    // Constrained (pinned) vertices keep their prescribed guess. Collective. Returns
+    // why no feasible start exists (a vertex on or inside an obstacle: a pinned one
+    // driven into it, or an obstacle moved onto it), empty if one was found.
+    std::string
     begin_step(const double                     t_n,
                const double                     t_new,
                const VectorType                &u_n,
@@ -88,6 +89,11 @@ namespace clothsim::physics
     // the largest μ λ (1 if contacts appear where there were none). Collective.
     double
     relag_friction(const VectorType &u);
+
+    // The first vertex (on any rank) that is on or inside an obstacle at `time`, given u
+    // (owned), described for a message; empty if none. Collective.
+    std::string
+    penetration(const VectorType &u, const double time) const;
 
     // The largest step α <= 1 along `direction` from u (both ghosted) that keeps every
     // vertex at a tenth of its distance from every obstacle or farther, the obstacles
@@ -156,6 +162,10 @@ namespace clothsim::physics
     position(const Vertex &vertex, const double *u_local) const;
 
   private:
+    // `local` (this rank's message or empty) from the lowest rank that has one.
+    std::string
+    first_message(const std::string &local) const;
+
     const std::vector<Obstacle> obstacles;
     const ContactSettings       settings;
     const mesh::Discretization &discretization;

@@ -73,6 +73,19 @@ namespace clothsim
                                              boundary_conditions->constraints());
     add_terms(parameter_file, groups);
     piece = discretization.surface_piece();
+    if (contact != nullptr)
+      {
+        // The cloth must start off the obstacles (within the thickness is fine).
+        VectorType u, v;
+        initialize_owned(u);
+        initialize_owned(v);
+        initial_state(u, v);
+        const std::string inside = contact->penetration(u, 0.);
+        if (!inside.empty())
+          throw InputError(parameter_file,
+                           "Obstacle",
+                           inside + ": start the cloth outside every obstacle");
+      }
     if (springs)
       {
         VectorType masses;
@@ -262,14 +275,16 @@ namespace clothsim
   }
 
 
-  void
+  std::string
   ClothModel::begin_step(const double      t_n,
                          const double      t_new,
                          const VectorType &u_n,
                          VectorType       &u_new)
   {
-    if (contact != nullptr)
-      contact->begin_step(t_n, t_new, u_n, u_new, boundary_conditions->constraints());
+    if (contact == nullptr)
+      return "";
+    return contact->begin_step(
+      t_n, t_new, u_n, u_new, boundary_conditions->constraints());
   }
 
 

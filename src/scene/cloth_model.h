@@ -181,7 +181,7 @@ namespace clothsim
     {
       return model->assemble(u, step, gradient, hessian);
     }
-    void
+    std::string
     begin_step(const double      t_n,
                const double      t_new,
                const VectorType &u_n,

@@ -74,8 +74,8 @@ namespace clothsim
              MatrixType       *hessian) const = 0;
     // Before each attempt of a step from t_n to t_new, after the prediction: contact
     // moves Newton's initial guess `u_new` (owned) off the obstacles and lags friction
-    // from u_n (owned). Collective.
-    virtual void
+    // from u_n (owned). Collective. Returns why no feasible start exists (empty: found).
+    virtual std::string
     begin_step(const double      t_n,
                const double      t_new,
                const VectorType &u_n,

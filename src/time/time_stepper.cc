@@ -115,7 +115,11 @@ namespace clothsim
     const StepTerms terms = predict_step(time_new, dt, load_factor);
     last_terms            = terms;
     // Contact: Newton starts off the obstacles (and friction is lagged).
-    model.begin_step(time_new - dt, time_new, u_n, u_new);
+    const std::string infeasible = model.begin_step(time_new - dt, time_new, u_n, u_new);
+    if (!infeasible.empty())
+      throw SimulationError("contact: " + infeasible +
+                            "; the run stops here, output up to t = " +
+                            std::to_string(time_new - dt) + " s is kept");
 
     // solve. A tangent kept by 'modified newton' is one of these weights only. ML's
     // hierarchy recomputed on the aggregates of a differently scaled tangent can fail
