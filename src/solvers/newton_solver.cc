@@ -58,14 +58,12 @@ namespace clothsim
       const NonlinearSolverParameters &parameters;
       NewtonSolver::TangentState      &tangent; // outlives the solve
       TimerOutput                     &timer;
-      TrilinosVector                   u, rhs, solution;
-      TrilinosVector                   iterate;   // where the direction is computed
-      TrilinosVector                   update;    // the last Newton update (status tests)
-      TrilinosVector                   direction; // the line search's direction
-      unsigned int                     linear_iterations   = 0;
-      unsigned int                     projected_fallbacks = 0;
-      unsigned int                     tangents            = 0;
-      std::string                      failure;
+      // In u's layout; iterate: where the direction is computed; update: the last one.
+      TrilinosVector u, rhs, solution, iterate, update, direction;
+      unsigned int   linear_iterations   = 0;
+      unsigned int   projected_fallbacks = 0;
+      unsigned int   tangents            = 0;
+      std::string    failure             = std::string();
     };
 
     // NOX's residual callback.
@@ -439,11 +437,7 @@ namespace clothsim
                     u,
                     u,
                     u,
-                    u,
-                    0,
-                    0,
-                    0,
-                    ""};
+                    u};
     const bool single_step = parameters.method == NewtonMethod::single_step;
 
     auto interface     = Teuchos::rcp(new Interface(context));
