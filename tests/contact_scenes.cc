@@ -60,6 +60,22 @@ namespace
     return u;
   }
 
+  // Every row of the run's statistics.csv has every vertex outside every obstacle.
+  bool
+  check_outside(ConditionalOStream &pcout,
+                const std::string  &name,
+                const fs::path     &directory)
+  {
+    const Csv statistics = read_csv((directory / "statistics.csv").string());
+    double    closest    = std::numeric_limits<double>::infinity();
+    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
+    return check_above(pcout,
+                       name + ": smallest vertex-obstacle distance, m",
+                       closest,
+                       0.);
+  }
+
   // Runs the scene; checks that it finished and that no vertex ever reached an obstacle.
   bool
   run(ConditionalOStream             &pcout,
@@ -77,12 +93,7 @@ namespace
       check_above(pcout, name + ": finished (1) or stopped (0)", result.finished, 0.5);
     if (!result.files_read)
       return false;
-    const Csv statistics = read_csv((root / name / "statistics.csv").string());
-    double    closest    = std::numeric_limits<double>::infinity();
-    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
-      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
-    passed &=
-      check_above(pcout, name + ": smallest vertex-obstacle distance, m", closest, 0.);
+    passed &= check_outside(pcout, name, root / name);
     return passed;
   }
 
@@ -212,13 +223,9 @@ namespace
     bool passed = result.passed && result.files_read;
     if (!passed)
       return false;
-    const Csv statistics       = read_csv((root / "drape" / "statistics.csv").string());
-    const unsigned int last    = statistics.rows.size() - 1;
-    double             closest = std::numeric_limits<double>::infinity();
-    for (unsigned int r = 0; r <= last; ++r)
-      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
-    passed &=
-      check_above(pcout, "drape: smallest vertex-obstacle distance, m", closest, 0.);
+    const Csv statistics    = read_csv((root / "drape" / "statistics.csv").string());
+    const unsigned int last = statistics.rows.size() - 1;
+    passed &= check_outside(pcout, "drape", root / "drape");
     passed &= check_near(pcout,
                          "drape: DC of the flat specimen",
                          statistics.number(0, "drape_coefficient"),
@@ -282,13 +289,7 @@ namespace
     passed &= check_above(pcout, "pins into a plane: steps written", result.steps, 0.5);
     if (!result.files_read)
       return false;
-    const Csv statistics =
-      read_csv((root / "pins into plane" / "statistics.csv").string());
-    double closest = std::numeric_limits<double>::infinity();
-    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
-      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
-    passed &=
-      check_above(pcout, "pins into a plane: smallest distance written, m", closest, 0.);
+    passed &= check_outside(pcout, "pins into a plane", root / "pins into plane");
     return passed;
   }
 } // namespace

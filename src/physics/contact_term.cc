@@ -70,6 +70,16 @@ namespace clothsim::physics
   }
 
 
+  std::vector<RigidPose>
+  ObstacleContact::poses_at(const double time) const
+  {
+    std::vector<RigidPose> poses;
+    for (const Obstacle &obstacle : obstacles)
+      poses.push_back(obstacle.pose(time));
+    return poses;
+  }
+
+
   Point<3>
   ObstacleContact::position(const Vertex &vertex, const double *u_local) const
   {
@@ -91,9 +101,7 @@ namespace clothsim::physics
     state_time          = step.time;
     const double  d_hat = settings.thickness;
     const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
-    std::vector<RigidPose> poses;
-    for (const Obstacle &obstacle : obstacles)
-      poses.push_back(obstacle.pose(step.time));
+    const std::vector<RigidPose> poses = poses_at(step.time);
 
     const bool         derivatives = gradient != nullptr || hessian != nullptr;
     double             value       = 0.;
@@ -152,13 +160,8 @@ namespace clothsim::physics
     last_dt = t_new - t_n;
     lagged.clear();
     carried_points.assign(table.size() * obstacles.size(), Point<3>());
-    const double           d_hat = settings.thickness;
-    std::vector<RigidPose> start, end;
-    for (const Obstacle &obstacle : obstacles)
-      {
-        start.push_back(obstacle.pose(t_n));
-        end.push_back(obstacle.pose(t_new));
-      }
+    const double                 d_hat = settings.thickness;
+    const std::vector<RigidPose> start = poses_at(t_n), end = poses_at(t_new);
     end_poses = end;
     std::string failure;
     for (unsigned int k = 0; k < table.size() && failure.empty(); ++k)
@@ -238,18 +241,19 @@ namespace clothsim::physics
   std::string
   ObstacleContact::penetration(const VectorType &u, const double time) const
   {
-    std::string found;
+    const std::vector<RigidPose> poses = poses_at(time);
+    std::string                  found;
     for (const Vertex &vertex : table)
       {
         Point<3> x = vertex.reference;
         for (unsigned int c = 0; c < 3; ++c)
           x[c] += u[vertex.dofs[c]];
-        for (const Obstacle &obstacle : obstacles)
+        for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
-            const double d = obstacle.distance(obstacle.pose(time), x, false).value;
+            const double d = obstacles[o].distance(poses[o], x, false).value;
             if (d <= 0. && found.empty())
               found = "the cloth vertex at " + describe(x) +
-                      " is on or inside obstacle '" + obstacle.name() +
+                      " is on or inside obstacle '" + obstacles[o].name() +
                       "' (d = " + std::to_string(d) +
                       " m) at t = " + std::to_string(time) + " s";
           }
@@ -302,13 +306,11 @@ namespace clothsim::physics
                                 const VectorType &direction,
                                 const double      time) const
   {
-    const unsigned int     n_relevant = discretization.relevant_dofs().n_elements();
-    const double          *local      = ghosted_values(u, n_relevant);
-    const double          *step       = ghosted_values(direction, n_relevant);
-    std::vector<RigidPose> poses;
-    for (const Obstacle &obstacle : obstacles)
-      poses.push_back(obstacle.pose(time));
-    double alpha = 1.;
+    const unsigned int           n_relevant = discretization.relevant_dofs().n_elements();
+    const double                *local      = ghosted_values(u, n_relevant);
+    const double                *step       = ghosted_values(direction, n_relevant);
+    const std::vector<RigidPose> poses      = poses_at(time);
+    double                       alpha      = 1.;
     for (const Vertex &vertex : table)
       {
         const Point<3> x = position(vertex, local);
@@ -337,7 +339,8 @@ namespace clothsim::physics
   ObstacleContact::report(const VectorType &u, const double time) const
   {
     const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
-    Report        result{std::numeric_limits<double>::infinity(),
+    const std::vector<RigidPose> poses = poses_at(time);
+    Report                       result{std::numeric_limits<double>::infinity(),
                   std::vector<Tensor<1, 3>>(obstacles.size()),
                   std::vector<unsigned int>(obstacles.size(), 0)};
     for (const Vertex &vertex : table)
@@ -345,9 +348,8 @@ namespace clothsim::physics
         const Point<3> x = position(vertex, local);
         for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
-            const RigidPose      pose = obstacles[o].pose(time);
-            const SignedDistance d    = obstacles[o].distance(pose, x, true);
-            result.min_distance       = std::min(result.min_distance, d.value);
+            const SignedDistance d = obstacles[o].distance(poses[o], x, true);
+            result.min_distance    = std::min(result.min_distance, d.value);
             if (d.value >= settings.thickness)
               continue;
             ++result.contacts[o];

@@ -162,6 +162,9 @@ namespace clothsim::physics
     position(const Vertex &vertex, const double *u_local) const;
 
   private:
+    // Every obstacle's pose at `time`.
+    std::vector<RigidPose>
+    poses_at(const double time) const;
     // `local` (this rank's message or empty) from the lowest rank that has one.
     std::string
     first_message(const std::string &local) const;

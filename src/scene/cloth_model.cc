@@ -372,9 +372,9 @@ namespace clothsim
             std::vector<std::array<Point<2>, 3>> triangles;
             for (const std::vector<double> &part : all)
               for (std::size_t k = 0; k + 6 <= part.size(); k += 6)
-                triangles.push_back({Point<2>(part[k], part[k + 1]),
-                                     Point<2>(part[k + 2], part[k + 3]),
-                                     Point<2>(part[k + 4], part[k + 5])});
+                triangles.push_back({{Point<2>(part[k], part[k + 1]),
+                                      Point<2>(part[k + 2], part[k + 3]),
+                                      Point<2>(part[k + 4], part[k + 5])}});
             area = mesh::projected_area(triangles);
           }
         area                       = Utilities::MPI::sum(area, communicator);
