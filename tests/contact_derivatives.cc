@@ -15,13 +15,8 @@
 //    of the potential and of the gradient (relative 1e-5), friction in its static and
 //    kinetic ranges.
 
-#include "extreme_runs.h"
+#include "contact_checks.h"
 #include "physics/contact_potential.h"
-#include "physics/contact_term.h"
-#include "physics/friction_term.h"
-#include "physics/model.h"
-#include "scene/scene.h"
-#include "term_checks.h"
 
 #include <random>
 
@@ -247,22 +242,11 @@ namespace
     return passed;
   }
 
+  // A sheet lying 2 mm above a sphere of radius 1 m (5 vertices within the thickness).
   bool
   check_terms(ConditionalOStream &pcout, const std::string &mesh)
   {
-    const double dt    = 1. / 60.;
-    const auto   scene = load_scene(source_path("params/contact/sheet-on-sphere.prm"),
-                                  {"Mesh/Mesh file=" + mesh,
-                                     "Obstacle 1/Center=0.5, 0.5, -1.002",
-                                     "Obstacle 1/Radius=1",
-                                     "Obstacle 1/Friction=0.4"},
-                                  MPI_COMM_WORLD);
-    const ClothModel &model     = *scene->model;
-    const auto       &mesh_data = model.get_discretization();
-    VectorType        masses;
-    model.lumped_masses(masses);
-    const ContactParameters &given = scene->parameters().contact;
-    physics::ObstacleShape   shape;
+    physics::ObstacleShape shape;
     shape.core   = ObstacleCore::point;
     shape.center = Point<3>(0.5, 0.5, -1.002);
     shape.radius = 1.;
@@ -274,54 +258,7 @@ namespace
       [](double) { return Tensor<1, 3>(); },
       Tensor<1, 3>({0., 0., 1.}),
       [](double) { return 0.; });
-    auto contact = std::make_unique<physics::ObstacleContact>(
-      obstacles,
-      physics::ContactSettings{given.thickness,
-                               given.barrier_acceleration,
-                               given.slip_velocity},
-      mesh_data,
-      masses);
-    physics::ObstacleContact &barrier = *contact;
-    physics::Model            terms(mesh_data, model.get_constraints());
-    terms.add(std::move(contact));
-    terms.add(std::make_unique<physics::ObstacleFriction>(barrier));
-
-    VectorType u_n, u_new, u, d;
-    for (VectorType *vector : {&u_n, &u_new, &u, &d})
-      model.initialize_owned(*vector);
-    barrier.begin_step(0., dt, u_n, u_new, model.get_constraints());
-    pcout << "  " << barrier.lagged_contacts().size() << " vertices in contact"
-          << std::endl;
-    bool passed =
-      check_above(pcout, "lagged contacts", barrier.lagged_contacts().size(), 0.5);
-    StepTerms step;
-    step.time = dt;
-    for (const bool projected : {false, true})
-      for (const double slip : {2e-6, 2e-3})
-        {
-          // Within 1 mm of the start (d stays in (1 mm, d̂)); slips below and above ε.
-          fill(model, u, slip, 0., 3);
-          fill(model, d, 1., 0., 5);
-          step.projected_tangent = projected;
-          const Derivatives D    = derivatives(terms, model, step, u, d, 1e-3 * slip);
-          const std::string what = std::string(projected ? "projected" : "exact") +
-                                   ", slips of " + std::to_string(slip) + " m: ";
-          passed &= check_below(pcout,
-                                what + "gradient against differences",
-                                D.gradient_error,
-                                1e-5);
-          if (!projected)
-            passed &= check_below(pcout,
-                                  what + "Hessian against differences",
-                                  D.hessian_error,
-                                  1e-5);
-          else
-            passed &= check_above(pcout,
-                                  what + "d·H d of the projected tangent",
-                                  D.curvature,
-                                  0.);
-        }
-    return passed;
+    return check_contact_terms(pcout, mesh, obstacles, 1);
   }
 } // namespace
 

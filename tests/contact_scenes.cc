@@ -31,7 +31,7 @@
 //    smallest step and the run stops (a SimulationError), keeping its output, with every
 //    vertex outside the plane in every row written.
 
-#include "extreme_runs.h"
+#include "contact_checks.h"
 
 using namespace clothsim;
 using namespace clothsim::test;
@@ -41,40 +41,6 @@ namespace
   namespace fs = std::filesystem;
 
   const fs::path root = scratch_directory("clothsim-contact-scenes");
-
-  // The centre probe's displacement at the output time closest to t.
-  Tensor<1, 3>
-  centre_at(const fs::path &directory, const double t)
-  {
-    const Csv    probes = read_csv((directory / "probes.csv").string());
-    double       best   = std::numeric_limits<double>::infinity();
-    Tensor<1, 3> u;
-    for (unsigned int r = 0; r < probes.rows.size(); ++r)
-      if (probes.rows[r][probes.column("probe")] == "center" &&
-          std::abs(probes.number(r, "time") - t) < best)
-        {
-          best = std::abs(probes.number(r, "time") - t);
-          u    = Tensor<1, 3>(
-            {probes.number(r, "ux"), probes.number(r, "uy"), probes.number(r, "uz")});
-        }
-    return u;
-  }
-
-  // Every row of the run's statistics.csv has every vertex outside every obstacle.
-  bool
-  check_outside(ConditionalOStream &pcout,
-                const std::string  &name,
-                const fs::path     &directory)
-  {
-    const Csv statistics = read_csv((directory / "statistics.csv").string());
-    double    closest    = std::numeric_limits<double>::infinity();
-    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
-      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
-    return check_above(pcout,
-                       name + ": smallest vertex-obstacle distance, m",
-                       closest,
-                       0.);
-  }
 
   // Runs the scene; checks that it finished and that no vertex ever reached an obstacle.
   bool

@@ -256,7 +256,7 @@ namespace clothsim
   struct ObstacleParameters
   {
     std::string  name;
-    std::string  shape; // "plane", "sphere", "capsule", "disc", "box"
+    std::string  shape; // "plane", "sphere", "capsule", "disc", "box", "mesh"
     Point<3>     center;
     Tensor<1, 3> axis;
     double       radius;
@@ -264,6 +264,8 @@ namespace clothsim
     double       disc_radius;
     Tensor<1, 3> half_extents;
     double       friction;
+    std::string  mesh_file;   // as given (relative to the parameter file)
+    double       mesh_scale;  // m per unit of the mesh file
     std::string  translation; // 'x; y; z' expressions of t, m
     Tensor<1, 3> rotation_axis;
     std::string  rotation_angle; // an expression of t, rad

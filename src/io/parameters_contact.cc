@@ -59,11 +59,13 @@ namespace clothsim
         prm.enter_subsection(section(k));
         prm.declare_entry("Shape",
                           "none",
-                          Patterns::Selection("none|plane|sphere|capsule|disc|box"),
+                          Patterns::Selection("none|plane|sphere|capsule|disc|box|mesh"),
                           "'plane' (the half-space below it is solid), 'sphere', "
                           "'capsule' (a cylinder with round ends), 'disc' (a round flat "
                           "plate with rounded rim, e.g. a table top), 'box' (edges "
-                          "rounded by 'Radius'); 'none': this section is unused.");
+                          "rounded by 'Radius'), 'mesh' (a triangle surface read from "
+                          "'Mesh file'; sharp edges and corners are fine); 'none': this "
+                          "section is unused.");
         prm.declare_entry("Name",
                           "",
                           Patterns::Anything(),
@@ -92,6 +94,19 @@ namespace clothsim
                           Patterns::List(Patterns::Double(0.), 3, 3, ","),
                           "m: of the box's core along x, y, z (the box is that plus "
                           "'Radius' on every side).");
+        prm.declare_entry("Mesh file",
+                          "",
+                          Patterns::FileName(),
+                          "The triangle surface of a 'mesh' obstacle, relative to this "
+                          "parameter file's directory: gmsh (.msh, or .geo meshed on "
+                          "reading), STL (ASCII or binary) or OBJ. Its coordinates are "
+                          "the obstacle's position at t = 0 (times 'Mesh scale'); "
+                          "'Center' is the centre of its rotation. Need not be closed.");
+        prm.declare_entry("Mesh scale",
+                          "1",
+                          Patterns::Double(1e-12),
+                          "Multiplies the mesh file's coordinates to give m (0.001 for a "
+                          "file in mm).");
         prm.declare_entry("Friction",
                           "0",
                           Patterns::Double(0.),
@@ -143,6 +158,8 @@ namespace clothsim
             obstacle.disc_radius    = prm.get_double("Disc radius");
             obstacle.half_extents   = vector_entry(prm.get("Half extents"));
             obstacle.friction       = prm.get_double("Friction");
+            obstacle.mesh_file      = prm.get("Mesh file");
+            obstacle.mesh_scale     = prm.get_double("Mesh scale");
             obstacle.translation    = prm.get("Translation");
             obstacle.rotation_axis  = vector_entry(prm.get("Rotation axis"));
             obstacle.rotation_angle = prm.get("Rotation angle");
@@ -161,6 +178,10 @@ namespace clothsim
               throw InputError("",
                                where + "/Disc radius",
                                "a disc needs a positive radius");
+            if (obstacle.shape == "mesh" && obstacle.mesh_file.empty())
+              throw InputError("",
+                               where + "/Mesh file",
+                               "a mesh obstacle needs its surface's file");
             if (obstacle.shape == "box" &&
                 obstacle.half_extents[0] + obstacle.radius <= 0.)
               throw InputError("", where + "/Half extents", "a box needs a size");

@@ -139,6 +139,20 @@ namespace clothsim::mesh
           for (unsigned int v = 0; v < 3; ++v)
             element.reference[v] = cell->vertex(v);
           element.area = triangle_area(element.reference);
+          for (unsigned int line = 0; line < 3; ++line)
+            {
+              unsigned int v = 0; // the vertex opposite the line
+              while (cell->vertex_index(v) == cell->line(line)->vertex_index(0) ||
+                     cell->vertex_index(v) == cell->line(line)->vertex_index(1))
+                ++v;
+              // A boundary edge by its triangle; an inner one by the triangle of
+              // the lower rank, or with the lower id on one rank.
+              element.counts_edge[v] =
+                cell->at_boundary(line) ||
+                (cell->neighbor(line)->is_locally_owned()
+                   ? cell->id() < cell->neighbor(line)->id()
+                   : cell->subdomain_id() < cell->neighbor(line)->subdomain_id());
+            }
           element_table.push_back(element);
         }
     std::sort(owned_displacements.begin(), owned_displacements.end());

@@ -78,6 +78,9 @@ namespace clothsim
         std::array<types::global_dof_index, 3> angle_dofs;
         std::array<unsigned int, 3>            edge_slots;
         std::array<double, 3>                  edge_signs;
+        // Whether this rank counts the edge opposite vertex v in sums over the mesh's
+        // edges (each edge by one triangle of one rank).
+        std::array<bool, 3> counts_edge;
       };
 
       // One edge of a locally owned triangle (with directors).

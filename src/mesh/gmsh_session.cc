@@ -1,11 +1,12 @@
-// Running gmsh for one mesh read: the session and its message log, gmsh's errors as
-// InputErrors, and generating a missing .msh from the .geo of the same stem.
+// Running gmsh for one mesh read (session, log and errors: mesh/gmsh_session.h), and
+// generating a missing .msh from the .geo of the same stem.
 
 #include "mesh/gmsh_reader_detail.h"
 
 #include "io/input_error.h"
 #include "io/input_file.h"
 #include "mesh/child_process.h"
+#include "mesh/gmsh_session.h"
 
 #include <gmsh.h>
 #include <unistd.h>
@@ -17,114 +18,6 @@ namespace clothsim::mesh::detail
 {
   namespace
   {
-    // gmsh::initialize() on construction, gmsh::finalize() on destruction (also
-    // unwinding).
-    class GmshSession
-    {
-    public:
-      GmshSession()
-      {
-        gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
-        try
-          {
-            gmsh::option::setNumber("General.Terminal", 0);
-          }
-        catch (...)
-          {
-            gmsh::finalize();
-            throw;
-          }
-      }
-
-      ~GmshSession()
-      {
-        try
-          {
-            gmsh::finalize();
-          }
-        catch (...)
-          {}
-      }
-
-      GmshSession(const GmshSession &) = delete;
-      GmshSession &
-      operator=(const GmshSession &) = delete;
-    };
-
-
-    // Runs `f` (calls into gmsh) and turns what gmsh throws (std::string in gmsh 4.8,
-    // std::exception in later versions) into an InputError with `context` in front.
-    template <typename Function>
-    void
-    call_gmsh(const std::string &msh_file, const std::string &context, Function &&f)
-    {
-      try
-        {
-          f();
-        }
-      catch (const InputError &)
-        {
-          throw;
-        }
-      catch (const std::string &message)
-        {
-          throw InputError(msh_file, "", context + ": " + message);
-        }
-      catch (const char *message)
-        {
-          throw InputError(msh_file, "", context + ": " + message);
-        }
-      catch (const std::exception &error)
-        {
-          throw InputError(msh_file, "", context + ": " + error.what());
-        }
-    }
-
-
-    // gmsh's message log while it lives (the logger is stopped also when unwinding: a
-    // logger left running would carry its messages over to later gmsh sessions).
-    class GmshLog
-    {
-    public:
-      GmshLog()
-      {
-        gmsh::logger::start();
-        std::vector<std::string> log;
-        gmsh::logger::get(log);
-        n_old_lines = log.size();
-      }
-
-      ~GmshLog()
-      {
-        try
-          {
-            gmsh::logger::stop();
-          }
-        catch (...)
-          {}
-      }
-
-      GmshLog(const GmshLog &) = delete;
-      GmshLog &
-      operator=(const GmshLog &) = delete;
-
-      // Throws an InputError with the first error logged since construction, if any.
-      void
-      throw_first_error(const std::string &msh_file, const std::string &context) const
-      {
-        const std::string        prefix = "Error: ";
-        std::vector<std::string> log;
-        gmsh::logger::get(log);
-        for (std::size_t i = n_old_lines; i < log.size(); ++i)
-          if (log[i].compare(0, prefix.size(), prefix) == 0)
-            throw InputError(msh_file, "", context + ": " + log[i].substr(prefix.size()));
-      }
-
-    private:
-      std::size_t n_old_lines;
-    };
-
-
     // Writes the .msh for `geo_file` next to it: to a temporary name first, then renamed,
     // so that a concurrent reader (another MPI rank) never sees a half-written file.
     void

@@ -16,17 +16,6 @@ namespace clothsim::physics
 {
   namespace
   {
-    // Two unit vectors spanning the plane perpendicular to the unit n.
-    void
-    tangent_basis(const Tensor<1, 3> &n, Tensor<1, 3> (&t)[2])
-    {
-      Tensor<1, 3> helper;
-      helper[std::abs(n[0]) < 0.9 ? 0 : 1] = 1.;
-      t[0]                                 = helper - (helper * n) * n;
-      t[0] /= t[0].norm();
-      t[1] = cross_product_3d(n, t[0]);
-    }
-
     std::string
     describe(const Point<3> &x)
     {
@@ -37,6 +26,17 @@ namespace clothsim::physics
   } // namespace
 
 
+  void
+  tangent_basis(const Tensor<1, 3> &n, Tensor<1, 3> (&t)[2])
+  {
+    Tensor<1, 3> helper;
+    helper[std::abs(n[0]) < 0.9 ? 0 : 1] = 1.;
+    t[0]                                 = helper - (helper * n) * n;
+    t[0] /= t[0].norm();
+    t[1] = cross_product_3d(n, t[0]);
+  }
+
+
   ObstacleContact::ObstacleContact(std::vector<Obstacle>       obstacles,
                                    const ContactSettings      &settings,
                                    const mesh::Discretization &discretization,
@@ -45,7 +45,9 @@ namespace clothsim::physics
     , obstacles(std::move(obstacles))
     , settings(settings)
     , discretization(discretization)
+    , mesh_pairs(this->obstacles, this->settings, discretization, lumped_masses)
   {
+    discretization.initialize_ghosted(step_start);
     VectorType prototype;
     discretization.initialize_ghosted(prototype);
     std::set<types::global_dof_index> seen;
@@ -113,6 +115,8 @@ namespace clothsim::physics
         const Point<3> x = position(vertex, local);
         for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
+            if (is_mesh(o))
+              continue;
             const SignedDistance d = obstacles[o].distance(poses[o], x, derivatives);
             if (d.value >= d_hat)
               continue;
@@ -137,6 +141,9 @@ namespace clothsim::physics
               constraints.distribute_local_to_global(H, dofs, *hessian);
           }
       }
+    if (!mesh_pairs.empty())
+      value += mesh_pairs.add_to_step(
+        local, poses, step.projected_tangent, constraints, gradient, hessian);
     return value;
   }
 
@@ -162,7 +169,8 @@ namespace clothsim::physics
     carried_points.assign(table.size() * obstacles.size(), Point<3>());
     const double                 d_hat = settings.thickness;
     const std::vector<RigidPose> start = poses_at(t_n), end = poses_at(t_new);
-    end_poses = end;
+    start_poses = start;
+    end_poses   = end;
     std::string failure;
     for (unsigned int k = 0; k < table.size() && failure.empty(); ++k)
       {
@@ -177,6 +185,8 @@ namespace clothsim::physics
         const Point<3> given = guess;
         for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
+            if (is_mesh(o))
+              continue;
             const double d_n = obstacles[o].distance(start[o], x_n, false).value;
             if (d_n <= 0.)
               {
@@ -197,10 +207,7 @@ namespace clothsim::physics
               guess = carried + alpha * (guess - carried);
             if (d_n < d_hat && obstacles[o].friction() > 0.)
               {
-                LaggedContact contact;
-                contact.vertex   = k;
-                contact.obstacle = o;
-                contact.carried  = carried;
+                LaggedContact contact = vertex_contact(k, o, carried);
                 tangent_basis(obstacles[o].distance(end[o], carried, true).gradient,
                               contact.tangent);
                 contact.mu_lambda = obstacles[o].friction() * vertex.kappa *
@@ -211,7 +218,7 @@ namespace clothsim::physics
         if (!failure.empty() || guess == given)
           continue;
         for (unsigned int o = 0; o < obstacles.size(); ++o)
-          if (obstacles[o].distance(end[o], guess, false).value <= 0.)
+          if (!is_mesh(o) && obstacles[o].distance(end[o], guess, false).value <= 0.)
             failure = "no start for the step to t = " + std::to_string(t_new) +
                       " s keeps the cloth vertex at " + describe(x_n) +
                       " outside every obstacle";
@@ -219,7 +226,69 @@ namespace clothsim::physics
           u_new[vertex.dofs[c]] = guess[c] - vertex.reference[c];
       }
     u_new.compress(VectorOperation::insert);
-    return first_message(failure);
+    failure = first_message(failure);
+    if (failure.empty() && !mesh_pairs.empty())
+      failure = first_message(begin_mesh_step(u_n, u_new, constraints));
+    return failure;
+  }
+
+
+  LaggedContact
+  ObstacleContact::vertex_contact(const unsigned int k,
+                                  const unsigned int o,
+                                  const Point<3>    &carried) const
+  {
+    LaggedContact contact;
+    contact.obstacle  = o;
+    contact.vertex    = k;
+    contact.n_points  = 1;
+    contact.points[0] = {table[k].dofs, table[k].local, table[k].reference, 1., carried};
+    return contact;
+  }
+
+
+  std::string
+  ObstacleContact::begin_mesh_step(const VectorType                &u_n,
+                                   VectorType                      &u_new,
+                                   const AffineConstraints<double> &constraints)
+  {
+    const unsigned int n = discretization.relevant_dofs().n_elements();
+    step_start           = u_n;
+    VectorType guess;
+    discretization.initialize_ghosted(guess);
+    guess                            = u_new;
+    const double             *start  = ghosted_values(step_start, n);
+    const double             *target = ghosted_values(guess, n);
+    const std::vector<double> at_start(start, start + n);
+    mesh_pairs.lag_friction(nullptr, at_start, start_poses, end_poses, lagged);
+
+    std::vector<double> from(at_start), direction(n);
+    mesh_pairs.carry(start_poses, end_poses, settings.ccd_fraction, from);
+    const auto &map = step_start.trilinos_partitioner();
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        if (constraints.is_constrained(map.GID(i)))
+          from[i] = target[i];
+        direction[i] = target[i] - from[i];
+      }
+    const std::string failure      = mesh_pairs.touching(from.data(), end_poses);
+    const MPI_Comm    communicator = discretization.get_communicator();
+    if (Utilities::MPI::max(failure.empty() ? 0 : 1, communicator) > 0)
+      return failure.empty() ? failure : "no start for the step keeps " + failure;
+    const double alpha =
+      Utilities::MPI::min(mesh_pairs.largest_step(from.data(),
+                                                  direction.data(),
+                                                  end_poses,
+                                                  settings.ccd_fraction),
+                          communicator);
+    for (const types::global_dof_index i : discretization.owned_dofs())
+      if (!constraints.is_constrained(i))
+        {
+          const int k = map.LID(static_cast<TrilinosWrappers::types::int_type>(i));
+          u_new[i]    = from[k] + alpha * direction[k];
+        }
+    u_new.compress(VectorOperation::insert);
+    return "";
   }
 
 
@@ -250,6 +319,8 @@ namespace clothsim::physics
           x[c] += u[vertex.dofs[c]];
         for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
+            if (is_mesh(o))
+              continue;
             const double d = obstacles[o].distance(poses[o], x, false).value;
             if (d <= 0. && found.empty())
               found = "the cloth vertex at " + describe(x) +
@@ -257,6 +328,16 @@ namespace clothsim::physics
                       "' (d = " + std::to_string(d) +
                       " m) at t = " + std::to_string(time) + " s";
           }
+      }
+    if (found.empty() && !mesh_pairs.empty())
+      {
+        VectorType ghosted;
+        discretization.initialize_ghosted(ghosted);
+        ghosted = u;
+        found   = mesh_pairs.touching(
+          ghosted_values(ghosted, discretization.relevant_dofs().n_elements()), poses);
+        if (!found.empty())
+          found += " at t = " + std::to_string(time) + " s";
       }
     return first_message(found);
   }
@@ -269,22 +350,26 @@ namespace clothsim::physics
     const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
     const unsigned int  n_obstacles = obstacles.size();
     std::vector<double> before(table.size() * n_obstacles, 0.);
+    std::vector<double> mesh_before;
     for (const LaggedContact &contact : lagged)
-      before[contact.vertex * n_obstacles + contact.obstacle] = contact.mu_lambda;
+      if (contact.vertex != numbers::invalid_unsigned_int)
+        before[contact.vertex * n_obstacles + contact.obstacle] = contact.mu_lambda;
+      else
+        mesh_before.push_back(contact.mu_lambda);
     lagged.clear();
     double largest = 0., change = 0.;
     for (unsigned int k = 0; k < table.size(); ++k)
       for (unsigned int o = 0; o < n_obstacles; ++o)
         {
+          if (is_mesh(o))
+            continue;
           const Point<3>                x = position(table[k], local);
           const physics::SignedDistance d = obstacles[o].distance(end_poses[o], x, true);
           double                        mu_lambda = 0.;
           if (d.value < d_hat && obstacles[o].friction() > 0.)
             {
-              LaggedContact contact;
-              contact.vertex   = k;
-              contact.obstacle = o;
-              contact.carried  = carried_points[k * n_obstacles + o];
+              LaggedContact contact =
+                vertex_contact(k, o, carried_points[k * n_obstacles + o]);
               tangent_basis(d.gradient, contact.tangent);
               mu_lambda = contact.mu_lambda =
                 obstacles[o].friction() * table[k].kappa *
@@ -294,6 +379,27 @@ namespace clothsim::physics
           largest = std::max({largest, mu_lambda, before[k * n_obstacles + o]});
           change  = std::max(change, std::abs(mu_lambda - before[k * n_obstacles + o]));
         }
+    if (!mesh_pairs.empty())
+      {
+        // Pairs have no lasting identity: compare the sorted forces.
+        const std::size_t  first = lagged.size();
+        const unsigned int n     = discretization.relevant_dofs().n_elements();
+        const double      *start = ghosted_values(step_start, n);
+        mesh_pairs.lag_friction(
+          local, std::vector<double>(start, start + n), start_poses, end_poses, lagged);
+        std::vector<double> after;
+        for (std::size_t k = first; k < lagged.size(); ++k)
+          after.push_back(lagged[k].mu_lambda);
+        std::sort(mesh_before.begin(), mesh_before.end());
+        std::sort(after.begin(), after.end());
+        mesh_before.resize(std::max(mesh_before.size(), after.size()), 0.);
+        after.resize(mesh_before.size(), 0.);
+        for (std::size_t k = 0; k < after.size(); ++k)
+          {
+            largest = std::max({largest, after[k], mesh_before[k]});
+            change  = std::max(change, std::abs(after[k] - mesh_before[k]));
+          }
+      }
     const MPI_Comm communicator = discretization.get_communicator();
     largest                     = Utilities::MPI::max(largest, communicator);
     change                      = Utilities::MPI::max(change, communicator);
@@ -322,6 +428,8 @@ namespace clothsim::physics
           continue;
         for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
+            if (is_mesh(o))
+              continue;
             const double d = obstacles[o].distance(poses[o], x, false).value;
             // 1-Lipschitz: far enough that the full step cannot come near.
             if (d - length > settings.ccd_fraction * d)
@@ -331,6 +439,10 @@ namespace clothsim::physics
                        obstacles[o].step_bound(poses[o], x, dx, settings.ccd_fraction));
           }
       }
+    if (!mesh_pairs.empty())
+      alpha =
+        std::min(alpha,
+                 mesh_pairs.largest_step(local, step, poses, settings.ccd_fraction));
     return Utilities::MPI::min(alpha, discretization.get_communicator());
   }
 
@@ -348,6 +460,8 @@ namespace clothsim::physics
         const Point<3> x = position(vertex, local);
         for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
+            if (is_mesh(o))
+              continue;
             const SignedDistance d = obstacles[o].distance(poses[o], x, true);
             result.min_distance    = std::min(result.min_distance, d.value);
             if (d.value >= settings.thickness)
@@ -359,6 +473,9 @@ namespace clothsim::physics
                                 d.gradient;
           }
       }
+    if (!mesh_pairs.empty())
+      mesh_pairs.report(
+        local, poses, result.min_distance, result.forces, result.contacts);
     const MPI_Comm communicator = discretization.get_communicator();
     result.min_distance         = Utilities::MPI::min(result.min_distance, communicator);
     for (unsigned int o = 0; o < obstacles.size(); ++o)

@@ -12,6 +12,7 @@
 // and tangent plane of every contact) for physics/friction_term.h.
 
 #include "mesh/discretization.h"
+#include "physics/mesh_contact.h"
 #include "physics/obstacle.h"
 #include "physics/term.h"
 
@@ -28,17 +29,35 @@ namespace clothsim::physics
     double ccd_fraction = 0.1;   // the line search keeps d >= this share of d(x)
   };
 
-  // One vertex-obstacle contact as lagged at the start of a step: the point of the
-  // obstacle where the vertex started (carried to the step's end), the tangent plane's
-  // basis there and μ λ (N).
+  // A cloth vertex in a lagged contact: its dofs, their local indices in ghosted
+  // vectors, its reference position, its weight w in the contact's closest point, and its
+  // step-start position carried along with the obstacle to the step's end (where it
+  // would be without slipping).
+  struct FrictionPoint
+  {
+    std::array<types::global_dof_index, 3> dofs;
+    std::array<int, 3>                     local;
+    Point<3>                               reference;
+    double                                 weight;
+    Point<3>                               carried;
+  };
+
+  // One contact as lagged at the start of a step (IPC): its slip over the step is
+  // u_T = Tᵀ Σ_i w_i (x_i - c_i) over its cloth points, with the tangent plane's basis T
+  // and μ λ (N) taken at the step's start.
   struct LaggedContact
   {
-    unsigned int vertex;
-    unsigned int obstacle;
-    Point<3>     carried;
-    Tensor<1, 3> tangent[2];
-    double       mu_lambda;
+    unsigned int                 obstacle;
+    unsigned int                 vertex; // in vertices() for a vertex contact
+    unsigned int                 n_points;
+    std::array<FrictionPoint, 3> points;
+    Tensor<1, 3>                 tangent[2];
+    double                       mu_lambda;
   };
+
+  // Two unit vectors spanning the plane perpendicular to the unit n.
+  void
+  tangent_basis(const Tensor<1, 3> &n, Tensor<1, 3> (&t)[2]);
 
   class ObstacleContact : public GlobalTerm
   {
@@ -162,6 +181,24 @@ namespace clothsim::physics
     position(const Vertex &vertex, const double *u_local) const;
 
   private:
+    bool
+    is_mesh(const unsigned int o) const
+    {
+      return obstacles[o].shape().core == ObstacleCore::mesh;
+    }
+    // A vertex contact's friction data but for its tangent plane and μ λ.
+    LaggedContact
+    vertex_contact(const unsigned int k,
+                   const unsigned int o,
+                   const Point<3>    &carried) const;
+    // begin_step for the mesh obstacles, after the analytic ones have moved u_new: the
+    // path from the step's start, carried along with moving mesh obstacles (pinned dofs
+    // at their guess), to u_new, capped; lags the mesh pairs' friction. This rank's
+    // failure message, or empty. Collective.
+    std::string
+    begin_mesh_step(const VectorType                &u_n,
+                    VectorType                      &u_new,
+                    const AffineConstraints<double> &constraints);
     // Every obstacle's pose at `time`.
     std::vector<RigidPose>
     poses_at(const double time) const;
@@ -177,8 +214,11 @@ namespace clothsim::physics
     // Per vertex and obstacle (vertex-major), the step-start position carried along with
     // the obstacle to the step's end, and the obstacles' poses there.
     std::vector<Point<3>>  carried_points;
-    std::vector<RigidPose> end_poses;
-    double                 last_dt    = 0.;
-    mutable double         state_time = 0.; // of the last step assembled
+    std::vector<RigidPose> start_poses, end_poses;
+    // Triangle-mesh obstacles (by primitive pairs) and the step's start (ghosted).
+    MeshContact    mesh_pairs;
+    VectorType     step_start;
+    double         last_dt    = 0.;
+    mutable double state_time = 0.; // of the last step assembled
   };
 } // namespace clothsim::physics

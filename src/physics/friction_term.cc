@@ -22,25 +22,33 @@ namespace clothsim::physics
                                 MatrixType                      *hessian,
                                 RankVector *dissipative_gradient) const
   {
-    const auto   &vertices = contact.vertices();
     const double *local =
       ghosted_values(u, static_cast<unsigned int>(u.trilinos_vector().MyLength()));
     const double epsilon =
       contact.get_settings().slip_velocity * contact.step_length(); // m
     double                               value = 0.;
-    Vector<double>                       g(3);
-    FullMatrix<double>                   H(3, 3);
-    std::vector<types::global_dof_index> dofs(3);
+    Vector<double>                       g;
+    FullMatrix<double>                   H;
+    std::vector<types::global_dof_index> dofs;
     for (const LaggedContact &lagged : contact.lagged_contacts())
       {
-        const auto        &vertex  = vertices[lagged.vertex];
-        const Tensor<1, 3> r       = contact.position(vertex, local) - lagged.carried;
-        const double       slip[2] = {lagged.tangent[0] * r, lagged.tangent[1] * r};
-        const double       y       = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1]);
+        // r = Σ w_i (x_i - c_i), the slip u_T = Tᵀ r.
+        Tensor<1, 3> r;
+        for (unsigned int i = 0; i < lagged.n_points; ++i)
+          {
+            const FrictionPoint &point = lagged.points[i];
+            Tensor<1, 3>         x     = point.reference - point.carried;
+            for (unsigned int c = 0; c < 3; ++c)
+              x[c] += local[point.local[c]];
+            r += point.weight * x;
+          }
+        const double slip[2] = {lagged.tangent[0] * r, lagged.tangent[1] * r};
+        const double y       = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1]);
         value += lagged.mu_lambda * contact::friction_f0(y, epsilon);
         if (gradient == nullptr && hessian == nullptr && dissipative_gradient == nullptr)
           continue;
-        // ∇D = μλ f1(y)/y T u_T;  ∇²D = μλ T (f1' ûûᵀ + f1/y (I - ûûᵀ)) Tᵀ.
+        // ∇_r D = μλ f1(y)/y T u_T;  ∇²_r D = μλ T (f1' ûûᵀ + f1/y (I - ûûᵀ)) Tᵀ;
+        // the point i's blocks are w_i (and w_i w_j) times them.
         const double f1_y  = contact::friction_f1_over_y(y, epsilon);
         const double f1_p  = contact::friction_f1_prime(y, epsilon);
         Tensor<1, 3> along = slip[0] * lagged.tangent[0] + slip[1] * lagged.tangent[1];
@@ -52,15 +60,23 @@ namespace clothsim::physics
         const Tensor<2, 3> along_along = outer_product(along, along);
         const Tensor<2, 3> hess =
           lagged.mu_lambda * (f1_p * along_along + f1_y * (plane - along_along));
-        for (unsigned int i = 0; i < 3; ++i)
-          {
-            dofs[i] = vertex.dofs[i];
-            g[i]    = force[i];
-            for (unsigned int j = 0; j < 3; ++j)
-              H(i, j) = hess[i][j];
-            if (dissipative_gradient != nullptr)
-              (*dissipative_gradient)[vertex.local[i]] += force[i];
-          }
+        const unsigned int n = 3 * lagged.n_points;
+        g.reinit(n);
+        H.reinit(n, n);
+        dofs.resize(n);
+        for (unsigned int a = 0; a < lagged.n_points; ++a)
+          for (unsigned int i = 0; i < 3; ++i)
+            {
+              const FrictionPoint &point = lagged.points[a];
+              dofs[3 * a + i]            = point.dofs[i];
+              g[3 * a + i]               = point.weight * force[i];
+              for (unsigned int b = 0; b < lagged.n_points; ++b)
+                for (unsigned int j = 0; j < 3; ++j)
+                  H(3 * a + i, 3 * b + j) =
+                    point.weight * lagged.points[b].weight * hess[i][j];
+              if (dissipative_gradient != nullptr)
+                (*dissipative_gradient)[point.local[i]] += point.weight * force[i];
+            }
         if (gradient != nullptr)
           constraints.distribute_local_to_global(g, dofs, *gradient);
         if (hessian != nullptr)

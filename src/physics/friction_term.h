@@ -1,12 +1,14 @@
 #pragma once
 
 // Coulomb friction between the cloth and the obstacles, lagged once per step (Li et al.,
-// "Incremental Potential Contact", 2020, sec. 5): for every vertex that started the step
-// within the contact thickness, with the normal force λ and the tangent plane (t1, t2)
-// taken at the step's start (ObstacleContact::begin_step), the dissipative potential
-//   D = μ λ f0(|u_T|),   u_T = (t1, t2)ᵀ (x - c),
-// where c is the vertex's start point carried along with the obstacle, so u_T is the
-// slip relative to the obstacle's surface over the step; f0 (physics/contact_potential.h)
+// "Incremental Potential Contact", 2020, sec. 5): for every contact within the contact
+// thickness at the step's start (a vertex near an analytic obstacle, a pair of primitives
+// near a mesh obstacle), with the normal force λ and the tangent plane (t1, t2) taken
+// there (ObstacleContact::begin_step), the dissipative potential
+//   D = μ λ f0(|u_T|),   u_T = (t1, t2)ᵀ Σ_i w_i (x_i - c_i),
+// over the contact's cloth vertices x_i with their weights w_i in its closest point (1
+// for a vertex), c_i the start points carried along with the obstacle: u_T is the slip
+// relative to the obstacle's surface over the step. f0 (physics/contact_potential.h)
 // turns static friction (slip below ε_v dt) smoothly into kinetic friction μ λ.
 
 #include "physics/contact_term.h"

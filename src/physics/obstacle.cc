@@ -82,6 +82,9 @@ namespace clothsim::physics
     const Tensor<1, 3> a = shape.axis;
     switch (shape.core)
       {
+        case ObstacleCore::mesh:
+          AssertThrow(false, ExcMessage("A mesh obstacle has no signed distance."));
+          return {};
           case ObstacleCore::half_space: {
             SignedDistance d;
             d.value    = a * w;

@@ -10,12 +10,16 @@
 // its Hessian positive semi-definite (distance to a convex set). Shapes are given in a
 // body frame; a rigid motion x = R(t) (y - c) + c + T(t) (rotation by an angle θ(t) about
 // a fixed axis through the shape's centre c, then a translation) places them in the
-// world.
+// world. A triangle-mesh obstacle moves the same way; its contact is by pairs of
+// primitives (physics/obstacle_surface.h).
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
+#include "physics/obstacle_surface.h"
+
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace clothsim::physics
@@ -28,7 +32,8 @@ namespace clothsim::physics
     point,
     segment,
     disc,
-    box
+    box,
+    mesh // a triangle surface: contact by primitive pairs, no signed distance
   };
 
   struct ObstacleShape
@@ -36,10 +41,11 @@ namespace clothsim::physics
     ObstacleCore core = ObstacleCore::half_space;
     Point<3>     center; // plane: a point on it; else the core's centre, m
     Tensor<1, 3> axis;   // unit: the plane's outer normal, the segment's or disc's axis
-    double       half_length = 0.; // segment, m
-    double       disc_radius = 0.; // disc, m
-    Tensor<1, 3> half_extents;     // box, along the body axes, m
-    double       radius = 0.;      // r, m (0 for the plane)
+    double       half_length = 0.;                  // segment, m
+    double       disc_radius = 0.;                  // disc, m
+    Tensor<1, 3> half_extents;                      // box, along the body axes, m
+    double       radius = 0.;                       // r, m (0 for the plane)
+    std::shared_ptr<const ObstacleSurface> surface; // mesh, in the body frame
   };
 
   // A signed distance (m) with its gradient (unit outside the core) and Hessian.

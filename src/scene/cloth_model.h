@@ -186,6 +186,11 @@ namespace clothsim
                const double      t_new,
                const VectorType &u_n,
                VectorType       &u_new) override;
+    bool
+    has_contact() const override
+    {
+      return contact != nullptr;
+    }
     double
     relag_friction(const VectorType &u) override
     {

@@ -2,8 +2,10 @@
 
 #include <deal.II/base/function_parser.h>
 
+#include "mesh/surface_mesh.h"
 #include "scene/boundary_conditions.h"
 
+#include <filesystem>
 #include <memory>
 
 namespace clothsim
@@ -22,13 +24,27 @@ namespace clothsim
         shape.half_length  = given.half_length;
         shape.disc_radius  = given.disc_radius;
         shape.half_extents = given.half_extents;
-        shape.core         = given.shape == "plane"    ? physics::ObstacleCore::half_space
+        shape.core         = given.shape == "mesh"     ? physics::ObstacleCore::mesh
+                             : given.shape == "plane"  ? physics::ObstacleCore::half_space
                              : given.shape == "sphere" ? physics::ObstacleCore::point
                              : given.shape == "capsule" ? physics::ObstacleCore::segment
                              : given.shape == "disc"    ? physics::ObstacleCore::disc
                                                         : physics::ObstacleCore::box;
         if (shape.core == physics::ObstacleCore::half_space)
           shape.radius = 0.;
+        if (shape.core == physics::ObstacleCore::mesh)
+          {
+            // Relative to the parameter file's directory.
+            std::filesystem::path file = given.mesh_file;
+            if (file.is_relative())
+              file = std::filesystem::path(parameter_file).parent_path() / file;
+            mesh::SurfaceMesh surface =
+              mesh::read_surface_mesh(file.lexically_normal().string(), given.mesh_scale);
+            shape.surface = std::make_shared<const physics::ObstacleSurface>(
+              std::move(surface.vertices),
+              std::move(surface.triangles),
+              std::move(surface.edges));
+          }
 
         // Expressions of t (x, y, z are there but 0: the motion is rigid).
         const std::string section     = "Obstacle " + std::to_string(k + 1);

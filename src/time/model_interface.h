@@ -72,6 +72,10 @@ namespace clothsim
              const StepTerms  &step,
              VectorType       *gradient,
              MatrixType       *hessian) const = 0;
+    // Whether the model has contact (begin_step, relag_friction and largest_step do
+    // something): they are then timed ("contact: ...").
+    virtual bool
+    has_contact() const = 0;
     // Before each attempt of a step from t_n to t_new, after the prediction: contact
     // moves Newton's initial guess `u_new` (owned) off the obstacles and lags friction
     // from u_n (owned). Collective. Returns why no feasible start exists (empty: found).

@@ -115,7 +115,12 @@ namespace clothsim
     const StepTerms terms = predict_step(time_new, dt, load_factor);
     last_terms            = terms;
     // Contact: Newton starts off the obstacles (and friction is lagged).
-    const std::string infeasible = model.begin_step(time_new - dt, time_new, u_n, u_new);
+    std::string infeasible;
+    if (model.has_contact())
+      {
+        TimerOutput::Scope scope(timer, "contact: feasible start");
+        infeasible = model.begin_step(time_new - dt, time_new, u_n, u_new);
+      }
     if (!infeasible.empty())
       throw SimulationError("contact: " + infeasible +
                             "; the run stops here, output up to t = " +

@@ -1,0 +1,178 @@
+#!/usr/bin/env bash
+# Cost of obstacle contact (issue 16): params/contact/sheet-on-sphere.prm as shipped against
+# the same scene with its obstacle removed ("Obstacle 1/Shape=none": the sheet falls freely),
+# on N x N-vertex sheets (meshes/swing-N.msh), all measured in this one invocation (compare
+# the ratios, not the absolute times of different machines). Runs one simulation at a time.
+#
+# Prints two tables (progress on stderr, tables on stdout). Per run:
+#   steps, halvings   time steps taken and step halvings ("done:" line of the run)
+#   wall_s            the run's wall time (its timer's total)
+#   ms/step           wall_s / steps
+#   newton/step       Newton iterations per step, failed attempts included
+#   lin/step          linear iterations per step (1 per Newton iteration with "direct")
+#   lin/newton        linear iterations per Newton iteration (CG's count with "cg")
+#   ms/newton         wall_s / Newton iterations
+#   contact%          the contact and friction terms' share of the assembly time per term
+#   x_prev            ms/step and newton/step over the same method's and obstacle's at the
+#                     previous size (N to about 2N: h halved)
+# and per method and N the ratios contact / no contact of the wall time (same simulated
+# time), ms/step, newton/step, lin/step and ms/newton (the issue's target: contact adds less
+# than 2x per step).
+# A failed run is marked FAILED (its figures from its statistics.csv, accepted steps only),
+# the others still run, the output directory is kept and the exit code is 1.
+#
+# Usage: scripts/benchmark-contact.sh [options]
+#   --sizes "N ..."     vertices per side (default "21 41 81"; meshes/swing-N.geo must exist)
+#   --methods "M ..."   'Linear solver/Method' values (default "direct", as the scene; "cg"
+#                       for CG with AMG: slow with contact, see Time below)
+#   --end-time T        simulated time, s (default 1.5, as the scene: the sheet lands at
+#                       about 0.1 s, so it is on the sphere for 93 % of the run)
+#   --set "S/N=V"       passed to every run (repeatable)
+#   --output DIR        where the runs write (DIR/<method>-N<N>-<sphere|none>/, run.log);
+#                       default a temporary directory, removed at the end unless --keep
+#   --keep              keep the temporary output directory
+#   --reuse             with --output: do not run again what a run there finished (its
+#                       run.log has the "done:" line), e.g. to print the tables again
+#   CLOTHSIM=path       the executable (default build/clothsim of the source tree)
+# Example: CLOTHSIM=/tmp/clothsim scripts/benchmark-contact.sh --sizes "21 41" --methods direct
+# Time (one core): N = 21, 41, 81 with direct about 5 s, 25 s, 3 min with contact, seconds
+# without. cg with contact: 15 s at N = 21, 14 min at N = 41 (step halvings), far longer at 81.
+set -euo pipefail
+
+repository=$(cd "$(dirname "$0")/.." && pwd)
+clothsim=${CLOTHSIM:-$repository/build/clothsim}
+sizes="21 41 81"
+methods="direct"
+end_time=1.5
+output=""
+keep=false
+reuse=false
+overrides=()
+
+die() {
+  echo "benchmark-contact: error: $*" >&2
+  exit 1
+}
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --sizes | --methods | --end-time | --set | --output)
+      [ $# -ge 2 ] || die "$1 expects a value"
+      case "$1" in
+        --sizes) sizes=$2 ;;
+        --methods) methods=$2 ;;
+        --end-time) end_time=$2 ;;
+        --set) overrides+=(--set "$2") ;;
+        --output) output=$2 ;;
+      esac
+      shift 2
+      ;;
+    --keep) keep=true && shift ;;
+    --reuse) reuse=true && shift ;;
+    -h | --help) sed -n '/^# Usage:/,/^# Example:/p' "$0" | sed 's/^# \{0,1\}//' && exit 0 ;;
+    *) die "unknown option '$1' (see --help)" ;;
+  esac
+done
+[ -x "$clothsim" ] || die "no executable '$clothsim' (build first, or set CLOTHSIM)"
+for n in $sizes; do
+  [[ "$n" =~ ^[0-9]+$ ]] && [ -f "$repository/meshes/swing-$n.geo" ] ||
+    die "--sizes: no mesh meshes/swing-$n.geo"
+done
+if [ -z "$output" ]; then
+  output=$(mktemp -d "${TMPDIR:-/tmp}/benchmark-contact.XXXXXX")
+  temporary=true
+else
+  mkdir -p "$output" && output=$(cd "$output" && pwd)
+  temporary=false
+fi
+
+# measure DIR: "vertices steps halvings wall newton linear contact% status" of the run.
+measure() {
+  local log="$1/run.log" done_line
+  done_line=$(grep '^done: ' "$log" | tail -n 1 || true)
+  sed -n 's/^  mesh .*: \([0-9]*\) vertices,.*/\1/p' "$log" | head -n 1 | tr '\n' ' '
+  if [ -n "$done_line" ]; then
+    sed 's/^done: \([0-9]*\) steps in \([0-9.e+-]*\) s; Newton iterations \([0-9]*\) .*linear iterations \([0-9]*\) .*step halvings \([0-9]*\).*/\1 \5 \2 \3 \4/' \
+      <<<"$done_line" | tr '\n' ' '
+  else
+    awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) k[$c] = c; next }
+      { s = $k["step"]; w = $k["wall_seconds"]; h += $k["retries"]
+        n += $k["newton_iterations"]; l += $k["linear_iterations"] }
+      END { printf "%d %d %s %d %d ", s, h, w + 0, n, l }' "$1/statistics.csv" 2>/dev/null ||
+      printf '0 0 0 0 0 '
+  fi
+  # "assembly time per term ...: membrane 1.2 s, ..., contact 0.5 s, friction 0.1 s"
+  sed -n 's/^assembly time per term[^:]*: //p' "$log" | tr ',' '\n' | awk '
+    $2 ~ /^[0-9.e+-]+$/ { all += $2; if ($1 == "contact" || $1 == "friction") c += $2 }
+    END { if (all > 0) printf "%.1f ", 100 * c / all; else printf "- " }'
+  [ -n "$done_line" ] && echo ok || echo FAILED
+}
+
+rows=()
+failed=false
+echo "benchmark-contact: $clothsim, end time $end_time s, sizes $sizes, methods $methods" >&2
+for method in $methods; do
+  for n in $sizes; do
+    for obstacle in sphere none; do
+      directory="$output/$method-N$n-$obstacle"
+      mkdir -p "$directory"
+      printf '%s, N = %s, obstacle %s ... ' "$method" "$n" "$obstacle" >&2
+      shape=()
+      [ "$obstacle" = none ] && shape=(--set "Obstacle 1/Shape=none")
+      if [ "$reuse" = true ] && grep -q '^done: ' "$directory/run.log" 2>/dev/null; then
+        printf '(reused) ' >&2
+      else
+        "$clothsim" "$repository/params/contact/sheet-on-sphere.prm" \
+          --set "Mesh/Mesh file=$repository/meshes/swing-$n.msh" --set "Time/End time=$end_time" \
+          --set "Output/Write VTK=false" --set "Output/Progress=off" \
+          --set "Linear solver/Method=$method" ${overrides[@]+"${overrides[@]}"} \
+          ${shape[@]+"${shape[@]}"} --output-dir "$directory" >"$directory/run.log" 2>&1 ||
+          failed=true
+      fi
+      row="$method $n $obstacle $(measure "$directory")"
+      [ "${row##* }" = ok ] || failed=true
+      rows+=("$row")
+      echo "$(cut -d' ' -f11 <<<"$row"), $(cut -d' ' -f7 <<<"$row") s" >&2
+    done
+  done
+done
+
+printf '%s\n' "${rows[@]}" | awk '
+  function r(a, b) { return b > 0 ? sprintf("%.2f", a / b) : "-" }
+  { m = $1; n = $2; o = $3; steps = $5; newton = $8
+    ms[m, n, o] = steps ? 1000 * $7 / steps : 0; nps[m, n, o] = steps ? newton / steps : 0
+    lps[m, n, o] = steps ? $9 / steps : 0; msn[m, n, o] = newton ? 1000 * $7 / newton : 0
+    wall[m, n, o] = $7; line[NR] = $0; key[NR] = m SUBSEP n SUBSEP o
+    if (!((m, o) in last)) prev[NR] = ""; else prev[NR] = last[m, o]
+    last[m, o] = key[NR]
+    if (!((m, n) in seen)) { seen[m, n] = 1; pairs[++np] = m SUBSEP n } }
+  END {
+    f = "%-7s %4s %-6s %8s %5s %4s %8s %8s %7s %7s %7s %8s %8s %8s %8s  %s\n"
+    printf f, "method", "N", "obst.", "vertices", "steps", "halv", "wall_s", "ms/step",
+      "newton/", "lin/", "lin/", "ms/", "contact%", "ms/step", "newton/", "status"
+    printf f, "", "", "", "", "", "", "", "", "step", "step", "newton", "newton", "", "x_prev",
+      "x_prev", ""
+    for (i = 1; i <= NR; ++i) {
+      split(line[i], v, " "); k = key[i]; p = prev[i]
+      printf f, v[1], v[2], v[3], v[4], v[5], v[6], sprintf("%.2f", v[7]),
+        sprintf("%.1f", ms[k]), sprintf("%.2f", nps[k]), sprintf("%.2f", lps[k]),
+        v[8] ? sprintf("%.2f", v[9] / v[8]) : "-", sprintf("%.2f", msn[k]), v[10],
+        p == "" ? "-" : r(ms[k], ms[p]), p == "" ? "-" : r(nps[k], nps[p]), v[11]
+    }
+    printf "\ncontact / no contact (same method, N and duration)\n"
+    g = "%-7s %4s %6s %8s %12s %9s %10s\n"
+    printf g, "method", "N", "wall", "ms/step", "newton/step", "lin/step", "ms/newton"
+    for (i = 1; i <= np; ++i) {
+      split(pairs[i], q, SUBSEP); c = pairs[i] SUBSEP "sphere"; z = pairs[i] SUBSEP "none"
+      printf g, q[1], q[2], r(wall[c], wall[z]), r(ms[c], ms[z]), r(nps[c], nps[z]), r(lps[c], lps[z]),
+        r(msn[c], msn[z])
+    }
+  }'
+
+if [ "$failed" = true ]; then
+  echo "benchmark-contact: a run failed; runs kept in $output" >&2
+  exit 1
+elif [ "$temporary" = true ] && [ "$keep" = false ]; then
+  rm -rf "$output"
+else
+  echo "runs kept in $output" >&2
+fi

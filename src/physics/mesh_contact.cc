@@ -1,0 +1,437 @@
+#include "physics/mesh_contact.h"
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
+#include "mesh/ghosted_values.h"
+#include "physics/contact_potential.h"
+#include "physics/contact_term.h"
+#include "physics/pair_barrier.h"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace clothsim::physics
+{
+  MeshContact::MeshContact(const std::vector<Obstacle> &obstacles,
+                           const ContactSettings       &settings,
+                           const mesh::Discretization  &discretization,
+                           const VectorType            &lumped_masses)
+    : obstacles(obstacles)
+    , communicator(discretization.get_communicator())
+    , settings(settings)
+  {
+    for (unsigned int o = 0; o < obstacles.size(); ++o)
+      if (obstacles[o].shape().core == ObstacleCore::mesh)
+        mesh_obstacles.push_back(o);
+    if (mesh_obstacles.empty())
+      return;
+
+    VectorType masses;
+    discretization.initialize_ghosted(masses);
+    masses = lumped_masses;
+    std::map<types::global_dof_index, unsigned int> point_of_dof;
+    for (const auto &element : discretization.elements())
+      {
+        std::array<unsigned int, 3> triangle;
+        for (unsigned int v = 0; v < 3; ++v)
+          {
+            const auto [slot, inserted] =
+              point_of_dof.emplace(element.dofs[3 * v], points.size());
+            triangle[v] = slot->second;
+            if (!inserted)
+              continue;
+            ClothPoint point;
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                point.dofs[c]  = element.dofs[3 * v + c];
+                point.local[c] = element.local_dofs[3 * v + c];
+              }
+            point.reference = element.reference[v];
+            point.mass      = masses[element.dofs[3 * v]];
+            point.owned     = discretization.owned_dofs().is_element(element.dofs[3 * v]);
+            points.push_back(point);
+          }
+        triangles.push_back(triangle);
+        for (unsigned int v = 0; v < 3; ++v)
+          if (element.counts_edge[v])
+            {
+              const unsigned int a = triangle[(v + 1) % 3], b = triangle[(v + 2) % 3];
+              edges.push_back({{a, b}});
+              edge_length.push_back(points[a].reference.distance(points[b].reference));
+            }
+      }
+  }
+
+
+  Point<3>
+  MeshContact::position(const unsigned int point, const double *u_local) const
+  {
+    Point<3> x = points[point].reference;
+    for (unsigned int c = 0; c < 3; ++c)
+      x[c] += u_local[points[point].local[c]];
+    return x;
+  }
+
+
+  PairPoints
+  MeshContact::pair_points(const Pair      &pair,
+                           const double    *u_local,
+                           const RigidPose &pose) const
+  {
+    const ObstacleSurface &surface = *obstacles[pair.obstacle].shape().surface;
+    PairPoints             x;
+    for (unsigned int i = 0; i < 4; ++i)
+      x[i] = pair.moving[i] ? position(pair.index[i], u_local)
+                            : pose.to_world(surface.vertices[pair.index[i]]);
+    return x;
+  }
+
+
+  void
+  MeshContact::for_each_pair(const double                            *u_local,
+                             const double                            *step_local,
+                             const std::vector<RigidPose>            &poses,
+                             const double                             margin,
+                             const std::function<void(const Pair &)> &visit,
+                             const unsigned int                       only) const
+  {
+    const double a_per_d = settings.barrier_acceleration / settings.thickness;
+    // The box around cloth points (at u and u + step) in the body frame of `pose`.
+    std::vector<Point<3>> corners;
+    const auto            box_of = [&](const RigidPose                          &pose,
+                            const std::initializer_list<unsigned int> cloth) {
+      corners.clear();
+      for (const unsigned int p : cloth)
+        {
+          const Point<3> x = position(p, u_local);
+          corners.push_back(pose.to_body(x));
+          if (step_local != nullptr)
+            {
+              Tensor<1, 3> dx;
+              for (unsigned int c = 0; c < 3; ++c)
+                dx[c] = step_local[points[p].local[c]];
+              corners.push_back(pose.to_body(x + dx));
+            }
+        }
+      return Box::around(corners, margin);
+    };
+
+    std::vector<unsigned int> found;
+    for (const unsigned int o : mesh_obstacles)
+      {
+        if (only != numbers::invalid_unsigned_int && o != only)
+          continue;
+        const ObstacleSurface &surface = *obstacles[o].shape().surface;
+        const RigidPose       &pose    = poses[o];
+        Pair                   pair;
+        pair.obstacle = o;
+
+        // Cloth vertices against the obstacle's triangles.
+        pair.kind      = PairKind::point_triangle;
+        pair.moving    = {{true, false, false, false}};
+        pair.threshold = 0.;
+        for (unsigned int p = 0; p < points.size(); ++p)
+          {
+            if (!points[p].owned)
+              continue;
+            found.clear();
+            surface.triangle_tree.find(box_of(pose, {p}), found);
+            pair.kappa = points[p].mass * a_per_d;
+            for (const unsigned int t : found)
+              {
+                const auto &triangle = surface.triangles[t];
+                pair.index           = {{static_cast<int>(p),
+                                         static_cast<int>(triangle[0]),
+                                         static_cast<int>(triangle[1]),
+                                         static_cast<int>(triangle[2])}};
+                visit(pair);
+              }
+          }
+
+        // Cloth edges against the obstacle's edges.
+        pair.kind   = PairKind::edge_edge;
+        pair.moving = {{true, true, false, false}};
+        for (unsigned int e = 0; e < edges.size(); ++e)
+          {
+            const auto [a, b] = edges[e];
+            found.clear();
+            surface.edge_tree.find(box_of(pose, {a, b}), found);
+            pair.kappa = 0.5 * (points[a].mass + points[b].mass) * a_per_d;
+            for (const unsigned int k : found)
+              {
+                const auto &edge = surface.edges[k];
+                pair.index       = {{static_cast<int>(a),
+                                     static_cast<int>(b),
+                                     static_cast<int>(edge[0]),
+                                     static_cast<int>(edge[1])}};
+                pair.threshold   = mollifier_threshold(edge_length[e],
+                                                     surface.vertices[edge[0]].distance(
+                                                       surface.vertices[edge[1]]));
+                visit(pair);
+              }
+          }
+
+        // The obstacle's vertices against the cloth's triangles.
+        pair.kind      = PairKind::point_triangle;
+        pair.moving    = {{false, true, true, true}};
+        pair.threshold = 0.;
+        for (const auto &triangle : triangles)
+          {
+            found.clear();
+            surface.vertex_tree.find(box_of(pose,
+                                            {triangle[0], triangle[1], triangle[2]}),
+                                     found);
+            pair.kappa = (points[triangle[0]].mass + points[triangle[1]].mass +
+                          points[triangle[2]].mass) /
+                         3. * a_per_d;
+            for (const unsigned int v : found)
+              {
+                pair.index = {{static_cast<int>(v),
+                               static_cast<int>(triangle[0]),
+                               static_cast<int>(triangle[1]),
+                               static_cast<int>(triangle[2])}};
+                visit(pair);
+              }
+          }
+      }
+  }
+
+
+  double
+  MeshContact::add_to_step(const double                    *u_local,
+                           const std::vector<RigidPose>    &poses,
+                           const bool                       projected,
+                           const AffineConstraints<double> &constraints,
+                           VectorType                      *gradient,
+                           MatrixType                      *hessian) const
+  {
+    const double       d_hat = settings.thickness;
+    const unsigned int order = hessian != nullptr ? 2 : gradient != nullptr ? 1 : 0;
+    double             value = 0.;
+    Vector<double>     g;
+    FullMatrix<double> H;
+    std::vector<types::global_dof_index> dofs;
+    for_each_pair(u_local, nullptr, poses, d_hat, [&](const Pair &pair) {
+      const PairPoints  x = pair_points(pair, u_local, poses[pair.obstacle]);
+      const PairBarrier b = pair_barrier(
+        pair.kind, x, pair.moving, pair.kappa, d_hat, pair.threshold, order, projected);
+      value += b.value;
+      if (b.n == 0 || !std::isfinite(b.value))
+        return;
+      g.reinit(b.n);
+      H.reinit(b.n, b.n);
+      dofs.clear();
+      for (unsigned int i = 0; i < 4; ++i)
+        if (pair.moving[i])
+          for (unsigned int c = 0; c < 3; ++c)
+            dofs.push_back(points[pair.index[i]].dofs[c]);
+      for (unsigned int i = 0; i < b.n; ++i)
+        {
+          g[i] = b.gradient[i];
+          for (unsigned int j = 0; j < b.n; ++j)
+            H(i, j) = b.hessian[i * b.n + j];
+        }
+      if (gradient != nullptr)
+        constraints.distribute_local_to_global(g, dofs, *gradient);
+      if (hessian != nullptr)
+        constraints.distribute_local_to_global(H, dofs, *hessian);
+    });
+    return value;
+  }
+
+
+  double
+  MeshContact::largest_step(const double                 *u_local,
+                            const double                 *step_local,
+                            const std::vector<RigidPose> &poses,
+                            const double                  fraction,
+                            const unsigned int            only) const
+  {
+    double alpha = 1.;
+    // Pairs whose swept boxes stay apart cannot meet on the path.
+    for_each_pair(
+      u_local,
+      step_local,
+      poses,
+      0.,
+      [&](const Pair &pair) {
+        const PairPoints x = pair_points(pair, u_local, poses[pair.obstacle]);
+        PairPoints       dx;
+        for (unsigned int i = 0; i < 4; ++i)
+          if (pair.moving[i])
+            for (unsigned int c = 0; c < 3; ++c)
+              dx[i][c] = step_local[points[pair.index[i]].local[c]];
+        alpha = std::min(alpha, pair_step_bound(pair.kind, x, dx, fraction));
+      },
+      only);
+    return alpha;
+  }
+
+
+  void
+  MeshContact::report(const double                 *u_local,
+                      const std::vector<RigidPose> &poses,
+                      double                       &min_distance,
+                      std::vector<Tensor<1, 3>>    &forces,
+                      std::vector<unsigned int>    &contacts) const
+  {
+    const double d_hat = settings.thickness;
+    for_each_pair(u_local, nullptr, poses, d_hat, [&](const Pair &pair) {
+      const PairPoints x = pair_points(pair, u_local, poses[pair.obstacle]);
+      const double     d = std::sqrt(pair_squared_distance(pair.kind, x));
+      min_distance       = std::min(min_distance, d);
+      if (d >= d_hat)
+        return;
+      ++contacts[pair.obstacle];
+      const PairBarrier b = pair_barrier(
+        pair.kind, x, pair.moving, pair.kappa, d_hat, pair.threshold, 1, false);
+      for (unsigned int i = 0; i < b.n; ++i)
+        forces[pair.obstacle][i % 3] -= b.gradient[i];
+    });
+    // Beyond d̂: the distance from the nearest owned cloth vertex to each mesh.
+    for (const unsigned int o : mesh_obstacles)
+      {
+        const ObstacleSurface &surface = *obstacles[o].shape().surface;
+        for (unsigned int p = 0; p < points.size(); ++p)
+          if (points[p].owned)
+            {
+              const Point<3> y     = poses[o].to_body(position(p, u_local));
+              const auto     lower = [&y](const Box &box) { return box.distance(y); };
+              const auto     exact = [&](const unsigned int t) {
+                const auto &v = surface.vertices;
+                const auto &k = surface.triangles[t];
+                return std::sqrt(
+                  pair_squared_distance(PairKind::point_triangle,
+                                        PairPoints{{y, v[k[0]], v[k[1]], v[k[2]]}}));
+              };
+              min_distance = surface.triangle_tree.nearest(lower, exact, min_distance);
+            }
+      }
+  }
+
+
+  std::string
+  MeshContact::touching(const double *u_local, const std::vector<RigidPose> &poses) const
+  {
+    std::string found;
+    for_each_pair(u_local, nullptr, poses, settings.thickness, [&](const Pair &pair) {
+      const PairPoints x = pair_points(pair, u_local, poses[pair.obstacle]);
+      if (!found.empty() || pair_squared_distance(pair.kind, x) > 0.)
+        return;
+      const Point<3>     at = x[pair.moving[0] ? 0 : 1];
+      std::ostringstream text;
+      text << "the cloth "
+           << (pair.kind == PairKind::edge_edge ? "edge" : "vertex or triangle")
+           << " at (" << at[0] << ", " << at[1] << ", " << at[2] << ") touches obstacle '"
+           << obstacles[pair.obstacle].name() << "'";
+      found = text.str();
+    });
+    return found;
+  }
+
+
+  std::vector<double>
+  MeshContact::carried_along(const std::vector<double> &state,
+                             const RigidPose           &from,
+                             const RigidPose           &to) const
+  {
+    std::vector<double> result(state);
+    for (unsigned int p = 0; p < points.size(); ++p)
+      {
+        const Point<3> x = to.to_world(from.to_body(position(p, state.data())));
+        for (unsigned int c = 0; c < 3; ++c)
+          result[points[p].local[c]] = x[c] - points[p].reference[c];
+      }
+    return result;
+  }
+
+
+  void
+  MeshContact::lag_friction(const double                 *u_local,
+                            const std::vector<double>    &start,
+                            const std::vector<RigidPose> &start_poses,
+                            const std::vector<RigidPose> &poses,
+                            std::vector<LaggedContact>   &lagged) const
+  {
+    const double d_hat = settings.thickness;
+    for (const unsigned int o : mesh_obstacles)
+      {
+        const double mu = obstacles[o].friction();
+        if (mu <= 0.)
+          continue;
+        // Where the cloth would be without slipping: its start carried along.
+        const std::vector<double> carried =
+          carried_along(start, start_poses[o], poses[o]);
+        const double *at = u_local != nullptr ? u_local : carried.data();
+        for_each_pair(
+          at,
+          nullptr,
+          poses,
+          d_hat,
+          [&](const Pair &pair) {
+            const PairPoints   x    = pair_points(pair, at, poses[o]);
+            const DistanceType type = distance_type(pair.kind, x);
+            const double       d    = std::sqrt(squared_distance(type, x));
+            if (d >= d_hat || d <= 0.)
+              return;
+            const std::array<double, 4> w = closest_point_weights(type, x);
+            Tensor<1, 3>                r;
+            for (unsigned int i = 0; i < 4; ++i)
+              r += w[i] * x[i];
+            // λ = -∂b/∂d (the mollifier scales it for edge-edge pairs).
+            double lambda = pair.kappa * std::abs(contact::barrier_first(d, d_hat));
+            if (pair.threshold > 0.)
+              lambda *=
+                mollifier(cross_product_3d(x[1] - x[0], x[3] - x[2]).norm_square(),
+                          pair.threshold);
+            LaggedContact contact;
+            contact.obstacle  = o;
+            contact.vertex    = numbers::invalid_unsigned_int;
+            contact.mu_lambda = mu * lambda;
+            tangent_basis(r / r.norm(), contact.tangent);
+            contact.n_points = 0;
+            for (unsigned int i = 0; i < 4; ++i)
+              if (pair.moving[i] && w[i] != 0.)
+                {
+                  FrictionPoint    &point = contact.points[contact.n_points++];
+                  const ClothPoint &cloth = points[pair.index[i]];
+                  point.dofs              = cloth.dofs;
+                  point.local             = cloth.local;
+                  point.reference         = cloth.reference;
+                  point.weight            = w[i];
+                  point.carried           = position(pair.index[i], carried.data());
+                }
+            if (contact.n_points > 0)
+              lagged.push_back(contact);
+          },
+          o);
+      }
+  }
+
+
+  void
+  MeshContact::carry(const std::vector<RigidPose> &start_poses,
+                     const std::vector<RigidPose> &poses,
+                     const double                  fraction,
+                     std::vector<double>          &state) const
+  {
+    for (const unsigned int o : mesh_obstacles)
+      {
+        const RigidPose &from = start_poses[o], &to = poses[o];
+        if (from.rotation == to.rotation && from.translation == to.translation)
+          continue;
+        // The cloth carried along, then back to where it is: in the obstacle's frame
+        // the straight path of the cloth left in place.
+        const std::vector<double> carried = carried_along(state, from, to);
+        std::vector<double>       back(state.size());
+        for (unsigned int i = 0; i < state.size(); ++i)
+          back[i] = state[i] - carried[i];
+        const double alpha = Utilities::MPI::min(
+          largest_step(carried.data(), back.data(), poses, fraction, o), communicator);
+        for (unsigned int i = 0; i < state.size(); ++i)
+          state[i] = carried[i] + alpha * back[i];
+      }
+  }
+} // namespace clothsim::physics

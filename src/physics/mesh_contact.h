@@ -1,0 +1,156 @@
+#pragma once
+
+// Contact of the cloth with triangle-mesh obstacles, by pairs of primitives (IPC, Li et
+// al. 2020): every cloth vertex against the obstacle's triangles, every cloth edge
+// against its edges, and every obstacle vertex against the cloth's triangles pays the
+// pair barrier κ m(x) s(d) (physics/pair_barrier.h) while closer than d̂, with
+// κ = m a_b / d̂ and m the mean lumped mass of the pair's cloth vertices. So a sharp
+// obstacle edge or corner cannot pass between the cloth's vertices. Candidate pairs come
+// from the obstacle's bounding-volume hierarchies, queried in its body frame (built
+// once: the obstacles are rigid). The line search is capped by continuous collision
+// detection of every pair whose swept boxes meet (pair_step_bound). A part of
+// ObstacleContact (physics/contact_term.h), which holds the obstacles and calls it.
+
+#include "mesh/discretization.h"
+#include "physics/obstacle.h"
+#include "physics/pair_distance.h"
+#include "physics/term.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace clothsim::physics
+{
+  struct ContactSettings;
+  struct LaggedContact;
+
+  class MeshContact
+  {
+  public:
+    // `obstacles`: all of the scene's (the mesh ones are used); `lumped_masses`: owned.
+    MeshContact(const std::vector<Obstacle> &obstacles,
+                const ContactSettings       &settings,
+                const mesh::Discretization  &discretization,
+                const VectorType            &lumped_masses);
+
+    bool
+    empty() const
+    {
+      return mesh_obstacles.empty();
+    }
+
+    // This rank's barrier at u (`u_local`: a ghosted vector's values), the obstacles at
+    // `poses` (all obstacles'), with its gradient and Hessian (projected to positive
+    // semi-definite if `projected`) distributed through `constraints` if non-null.
+    double
+    add_to_step(const double                    *u_local,
+                const std::vector<RigidPose>    &poses,
+                const bool                       projected,
+                const AffineConstraints<double> &constraints,
+                VectorType                      *gradient,
+                MatrixType                      *hessian) const;
+
+    // The largest α <= 1 such that no pair comes closer than `fraction` of its distance
+    // on the path u + s step, s in [0, α] (this rank's pairs; not reduced), with
+    // obstacle `only` (all mesh obstacles by default).
+    double
+    largest_step(const double                 *u_local,
+                 const double                 *step_local,
+                 const std::vector<RigidPose> &poses,
+                 const double                  fraction,
+                 const unsigned int only = numbers::invalid_unsigned_int) const;
+
+    // Over this rank's pairs within d̂ and its vertices' distances from the meshes: the
+    // smallest distance (lowered, m); over the pairs within d̂, per obstacle the force
+    // on the cloth (added, N) and the number of pairs (added).
+    void
+    report(const double                 *u_local,
+           const std::vector<RigidPose> &poses,
+           double                       &min_distance,
+           std::vector<Tensor<1, 3>>    &forces,
+           std::vector<unsigned int>    &contacts) const;
+
+    // A pair at distance 0 (touching or crossed within the thickness) at u, described;
+    // empty if none on this rank.
+    std::string
+    touching(const double *u_local, const std::vector<RigidPose> &poses) const;
+
+    // Friction data (appended to `lagged`) of every pair within d̂, the obstacles at
+    // `poses`: for each mesh obstacle with friction, at u (`u_local`; if null, at the
+    // step's start `start` carried along with the obstacle from `start_poses`, which
+    // keeps every distance), the slip measured from `start` carried along.
+    void
+    lag_friction(const double                 *u_local,
+                 const std::vector<double>    &start,
+                 const std::vector<RigidPose> &start_poses,
+                 const std::vector<RigidPose> &poses,
+                 std::vector<LaggedContact>   &lagged) const;
+
+    // A step's feasible start for the mesh obstacles that move (ghosted values, the
+    // step's start on entry): where an obstacle would hit the cloth left in place as it
+    // moves from `start_poses` to `poses` (continuous collision detection on the relative
+    // straight path in the obstacle's frame), the cloth rides along with it for the rest
+    // of its motion (a rigid motion, which keeps every distance to it). Collective.
+    void
+    carry(const std::vector<RigidPose> &start_poses,
+          const std::vector<RigidPose> &poses,
+          const double                  fraction,
+          std::vector<double>          &state) const;
+
+  private:
+    // A vertex of this rank's triangles (owned or ghost).
+    struct ClothPoint
+    {
+      std::array<types::global_dof_index, 3> dofs;
+      std::array<int, 3>                     local;
+      Point<3>                               reference;
+      double                                 mass;
+      bool                                   owned;
+    };
+
+    // One candidate pair: the four points' sources, cloth (index into `points`) or
+    // obstacle vertex (index into its surface), in PairPoints order.
+    struct Pair
+    {
+      PairKind            kind;
+      unsigned int        obstacle;
+      std::array<bool, 4> moving;
+      std::array<int, 4>  index;
+      double              kappa;
+      double              threshold; // the mollifier's (edge-edge), else 0
+    };
+
+    Point<3>
+    position(const unsigned int point, const double *u_local) const;
+
+    // `state` with every cloth point carried along with an obstacle from `from` to `to`.
+    std::vector<double>
+    carried_along(const std::vector<double> &state,
+                  const RigidPose           &from,
+                  const RigidPose           &to) const;
+
+    PairPoints
+    pair_points(const Pair &pair, const double *u_local, const RigidPose &pose) const;
+
+    // Calls `visit` for every pair whose cloth primitive's box (around its positions
+    // at u, and at u + step if `step_local` is non-null, grown by `margin`) meets the
+    // obstacle primitive's box; with obstacle `only` (all mesh obstacles by default).
+    void
+    for_each_pair(const double                            *u_local,
+                  const double                            *step_local,
+                  const std::vector<RigidPose>            &poses,
+                  const double                             margin,
+                  const std::function<void(const Pair &)> &visit,
+                  const unsigned int only = numbers::invalid_unsigned_int) const;
+
+    const std::vector<Obstacle>             &obstacles;
+    const MPI_Comm                           communicator;
+    const ContactSettings                   &settings;
+    std::vector<unsigned int>                mesh_obstacles; // indices into `obstacles`
+    std::vector<ClothPoint>                  points;
+    std::vector<std::array<unsigned int, 2>> edges;       // this rank counts them
+    std::vector<double>                      edge_length; // at rest, m
+    std::vector<std::array<unsigned int, 3>> triangles;   // this rank's
+  };
+} // namespace clothsim::physics

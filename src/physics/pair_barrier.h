@@ -1,0 +1,60 @@
+#pragma once
+
+// The barrier of one contact pair (physics/pair_distance.h) with its derivatives in the
+// coordinates of the pair's moving points: κ m(x) s(d), with s IPC's log barrier
+// (physics/contact_potential.h) of the pair's distance d, and for edge-edge pairs IPC's
+// mollifier (Li et al. 2020, eq. 22) of x = |ea × eb|²,
+//   m(x) = -x²/ε_x² + 2 x/ε_x  (x < ε_x),  1 otherwise,
+// which takes the barrier smoothly to zero as the edges turn parallel, where the pair's
+// distance type switches (ε_x = 1e-3 |ea|²|eb|² at rest). Derivatives by forward-mode
+// automatic differentiation (Sacado) of the distance's form. The projected (positive
+// semi-definite) Hessian is Gauss-Newton's κ s''(d) ∇d ∇dᵀ, s'' > 0 (the part κ s'(d) ∇²d
+// dropped, as for the analytic obstacles), while the mollifier acts the exact Hessian
+// with its negative eigenvalues set to zero.
+
+#include "physics/pair_distance.h"
+
+#include <array>
+
+namespace clothsim::physics
+{
+  struct PairBarrier
+  {
+    double                  value = 0.;
+    unsigned int            n     = 0; // derivative entries: 3 per moving point, in order
+    std::array<double, 12>  gradient{};
+    std::array<double, 144> hessian{}; // n x n, row-major
+  };
+
+  // κ (N/m), d̂ (m), `mollifier_threshold` ε_x (m⁴; 0: no mollifier). `moving`: which
+  // of the four points are unknowns. `order`: 0 the value, 1 also the gradient, 2 also
+  // the Hessian. Zero beyond d̂, infinite at d = 0.
+  PairBarrier
+  pair_barrier(const PairKind             kind,
+               const PairPoints          &x,
+               const std::array<bool, 4> &moving,
+               const double               kappa,
+               const double               d_hat,
+               const double               mollifier_threshold,
+               const unsigned int         order,
+               const bool                 project);
+
+  // m(x) for x = |ea × eb|² (m⁴) and its threshold ε_x.
+  inline double
+  mollifier(const double x, const double threshold)
+  {
+    return x < threshold ? (2. - x / threshold) * x / threshold : 1.;
+  }
+
+  // The mollifier's threshold for edges of rest lengths la, lb (m).
+  inline double
+  mollifier_threshold(const double la, const double lb)
+  {
+    return 1e-3 * la * la * lb * lb;
+  }
+
+  // Sets the negative eigenvalues of the symmetric n x n matrix A (row-major) to zero
+  // (cyclic Jacobi rotations).
+  void
+  project_to_positive_semidefinite(double *A, const unsigned int n);
+} // namespace clothsim::physics

@@ -1,0 +1,205 @@
+#include "physics/pair_distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace clothsim::physics
+{
+  namespace
+  {
+    std::array<std::array<double, 3>, 4>
+    coordinates(const PairPoints &x)
+    {
+      std::array<std::array<double, 3>, 4> c;
+      for (unsigned int i = 0; i < 4; ++i)
+        for (unsigned int d = 0; d < 3; ++d)
+          c[i][d] = x[i][d];
+      return c;
+    }
+
+    // The closest point of segment a b to p: its type (point-point or point-line).
+    DistanceType
+    point_segment_type(const PairPoints  &x,
+                       const unsigned int p,
+                       const unsigned int a,
+                       const unsigned int b)
+    {
+      const Tensor<1, 3> e = x[b] - x[a];
+      const double       t = (x[p] - x[a]) * e / e.norm_square();
+      if (t <= 0.)
+        return {DistanceType::point_point, {{p, a, 0, 0}}};
+      if (t >= 1.)
+        return {DistanceType::point_point, {{p, b, 0, 0}}};
+      return {DistanceType::point_line, {{p, a, b, 0}}};
+    }
+
+    // The type with the smallest distance among `candidates`.
+    template <std::size_t n>
+    DistanceType
+    closest_of(const std::array<DistanceType, n> &candidates, const PairPoints &x)
+    {
+      DistanceType best     = candidates[0];
+      double       smallest = std::numeric_limits<double>::infinity();
+      for (const DistanceType &type : candidates)
+        {
+          const double d2 = squared_distance(type, x);
+          if (d2 < smallest)
+            {
+              smallest = d2;
+              best     = type;
+            }
+        }
+      return best;
+    }
+  } // namespace
+
+
+  double
+  squared_distance(const DistanceType &type, const PairPoints &x)
+  {
+    return squared_distance<double>(type.form, coordinates(x), type.points);
+  }
+
+
+  std::array<double, 4>
+  closest_point_weights(const DistanceType &type, const PairPoints &x)
+  {
+    // The parameter of the point of line a b closest to p.
+    const auto along =
+      [&x](const unsigned int p, const unsigned int a, const unsigned int b) {
+        const Tensor<1, 3> e = x[b] - x[a];
+        return (x[p] - x[a]) * e / e.norm_square();
+      };
+    std::array<double, 4>              w{};
+    const std::array<unsigned int, 4> &i = type.points;
+    switch (type.form)
+      {
+        case DistanceType::point_point:
+          w[i[0]] = 1.;
+          w[i[1]] = -1.;
+          break;
+          case DistanceType::point_line: {
+            const double t = along(i[0], i[1], i[2]);
+            w[i[0]]        = 1.;
+            w[i[1]]        = -(1. - t);
+            w[i[2]]        = -t;
+            break;
+          }
+          case DistanceType::point_plane: {
+            const Tensor<1, 3> e0 = x[i[2]] - x[i[1]], e1 = x[i[3]] - x[i[1]];
+            const Tensor<1, 3> n = cross_product_3d(e0, e1), v = x[i[0]] - x[i[1]];
+            const double       b1 = cross_product_3d(v, e1) * n / n.norm_square();
+            const double       b2 = cross_product_3d(e0, v) * n / n.norm_square();
+            w[i[0]]               = 1.;
+            w[i[1]]               = -(1. - b1 - b2);
+            w[i[2]]               = -b1;
+            w[i[3]]               = -b2;
+            break;
+          }
+          case DistanceType::line_line: {
+            const Tensor<1, 3> ea = x[i[1]] - x[i[0]], eb = x[i[3]] - x[i[2]];
+            const Tensor<1, 3> v = x[i[0]] - x[i[2]];
+            const double A = ea * ea, B = ea * eb, C = eb * eb, D = ea * v, E = eb * v;
+            const double det = A * C - B * B;
+            const double s = (B * E - C * D) / det, t = (A * E - B * D) / det;
+            w[i[0]] = 1. - s;
+            w[i[1]] = s;
+            w[i[2]] = -(1. - t);
+            w[i[3]] = -t;
+            break;
+          }
+      }
+    // The point-point and point-line forms of an edge-edge pair may have the second
+    // edge's end first: make the first edge's weights the positive ones.
+    if (w[0] + w[1] < 0.)
+      for (double &wi : w)
+        wi = -wi;
+    return w;
+  }
+
+
+  DistanceType
+  distance_type(const PairKind kind, const PairPoints &x)
+  {
+    if (kind == PairKind::point_triangle)
+      {
+        // Inside the triangle's prism the plane is closest; else its boundary.
+        const Tensor<1, 3> e0 = x[2] - x[1], e1 = x[3] - x[1];
+        const Tensor<1, 3> n  = cross_product_3d(e0, e1);
+        const Tensor<1, 3> w  = x[0] - x[1];
+        const double       nn = n.norm_square();
+        // Barycentric coordinates of p's projection: (1 - b1 - b2, b1, b2).
+        const double b1 = cross_product_3d(w, e1) * n / nn;
+        const double b2 = cross_product_3d(e0, w) * n / nn;
+        if (b1 > 0. && b2 > 0. && b1 + b2 < 1.)
+          return {DistanceType::point_plane, {{0, 1, 2, 3}}};
+        return closest_of(std::array<DistanceType, 3>{{point_segment_type(x, 0, 1, 2),
+                                                       point_segment_type(x, 0, 2, 3),
+                                                       point_segment_type(x, 0, 3, 1)}},
+                          x);
+      }
+
+    // Edges: the minimum of |a0 + s ea - b0 - t eb|² over the unit square is inside it
+    // (line-line) or on one of its sides (an end point against the other segment).
+    const Tensor<1, 3> ea = x[1] - x[0], eb = x[3] - x[2], w = x[0] - x[2];
+    const double       A = ea * ea, B = ea * eb, C = eb * eb, D = ea * w, E = eb * w;
+    const double       det = A * C - B * B; // |ea × eb|²
+    if (det > 1e-12 * A * C)
+      {
+        const double s = (B * E - C * D) / det, t = (A * E - B * D) / det;
+        if (s > 0. && s < 1. && t > 0. && t < 1.)
+          return {DistanceType::line_line, {{0, 1, 2, 3}}};
+      }
+    return closest_of(std::array<DistanceType, 4>{{point_segment_type(x, 0, 2, 3),
+                                                   point_segment_type(x, 1, 2, 3),
+                                                   point_segment_type(x, 2, 0, 1),
+                                                   point_segment_type(x, 3, 0, 1)}},
+                      x);
+  }
+
+
+  double
+  pair_step_bound(const PairKind    kind,
+                  const PairPoints &x,
+                  const PairPoints &dx,
+                  const double      fraction)
+  {
+    // The pair's distance moves at most L |ds| when the path advances by ds, L the
+    // largest motion of a point of the first primitive plus that of the second, after
+    // their common mean motion (which moves no distance) is taken out.
+    Tensor<1, 3> mean;
+    for (const Point<3> &d : dx)
+      mean += d;
+    mean /= 4.;
+    const unsigned int first = kind == PairKind::point_triangle ? 1 : 2;
+    double             L0 = 0., L1 = 0.;
+    for (unsigned int i = 0; i < 4; ++i)
+      (i < first ? L0 : L1) = std::max(i < first ? L0 : L1, (dx[i] - mean).norm());
+    const double L = L0 + L1;
+
+    const double d0  = std::sqrt(pair_squared_distance(kind, x));
+    const double gap = fraction * d0;
+    if (L <= d0 - gap)
+      return 1.;
+    // Each advance keeps d >= gap on the way; stop once d is within a quarter of the
+    // gap above it (the rest would take many small advances) or after 100.
+    double     s = 0., d = d0;
+    PairPoints y;
+    for (unsigned int k = 0; k < 100; ++k)
+      {
+        const double next = s + (d - gap) / L;
+        if (next >= 1.)
+          return 1.;
+        for (unsigned int i = 0; i < 4; ++i)
+          y[i] = x[i] + next * dx[i];
+        d = std::sqrt(pair_squared_distance(kind, y));
+        s = next;
+        if (d < 1.25 * gap)
+          break;
+      }
+    return s;
+  }
+
+
+} // namespace clothsim::physics

@@ -1,0 +1,119 @@
+#pragma once
+
+// What the contact tests share: the step potential of a contact model against
+// differences (tests/contact_derivatives.cc, tests/mesh_contact.cc) and reading a contact
+// run's output (tests/contact_scenes.cc, tests/mesh_contact_scenes.cc).
+
+#include "extreme_runs.h"
+#include "physics/contact_term.h"
+#include "physics/friction_term.h"
+#include "physics/model.h"
+#include "scene/scene.h"
+#include "term_checks.h"
+
+namespace clothsim::test
+{
+  // The barrier and friction of `obstacles` (with the thickness and stiffness of
+  // params/contact/sheet-on-sphere.prm) on the sheet of `mesh` flat in z = 0: after
+  // begin_step (friction lagged at rest), at least `contacts` contacts on all ranks, and
+  // the step potential's gradient and exact Hessian against central differences (relative
+  // 1e-5) at displacements within 1 mm of the start, with slips below and above the
+  // static range; the projected tangent positive along the difference's direction.
+  inline bool
+  check_contact_terms(ConditionalOStream                   &pcout,
+                      const std::string                    &mesh,
+                      const std::vector<physics::Obstacle> &obstacles,
+                      const unsigned int                    contacts)
+  {
+    const double dt    = 1. / 60.;
+    const auto   scene = load_scene(source_path("params/contact/sheet-on-sphere.prm"),
+                                  {"Mesh/Mesh file=" + mesh},
+                                  MPI_COMM_WORLD);
+    const ClothModel &model     = *scene->model;
+    const auto       &mesh_data = model.get_discretization();
+    VectorType        masses;
+    model.lumped_masses(masses);
+    const ContactParameters &given   = scene->parameters().contact;
+    auto                     contact = std::make_unique<physics::ObstacleContact>(
+      obstacles,
+      physics::ContactSettings{given.thickness,
+                               given.barrier_acceleration,
+                               given.slip_velocity},
+      mesh_data,
+      masses);
+    physics::ObstacleContact &barrier = *contact;
+    physics::Model            terms(mesh_data, model.get_constraints());
+    terms.add(std::move(contact));
+    terms.add(std::make_unique<physics::ObstacleFriction>(barrier));
+
+    VectorType u_n, u_new, u, d;
+    for (VectorType *vector : {&u_n, &u_new, &u, &d})
+      model.initialize_owned(*vector);
+    barrier.begin_step(0., dt, u_n, u_new, model.get_constraints());
+    const unsigned int lagged =
+      Utilities::MPI::sum(static_cast<unsigned int>(barrier.lagged_contacts().size()),
+                          MPI_COMM_WORLD);
+    bool      passed = check_at_least(pcout, "contacts with friction", lagged, contacts);
+    StepTerms step;
+    step.time = dt;
+    for (const bool projected : {false, true})
+      for (const double slip : {2e-6, 2e-3})
+        {
+          fill(model, u, slip, 0., 3);
+          fill(model, d, 1., 0., 5);
+          step.projected_tangent = projected;
+          const Derivatives D    = derivatives(terms, model, step, u, d, 1e-3 * slip);
+          const std::string what = std::string(projected ? "projected" : "exact") +
+                                   ", slips of " + std::to_string(slip) + " m: ";
+          passed &= check_below(pcout,
+                                what + "gradient against differences",
+                                D.gradient_error,
+                                1e-5);
+          if (!projected)
+            passed &= check_below(pcout,
+                                  what + "Hessian against differences",
+                                  D.hessian_error,
+                                  1e-5);
+          else
+            passed &= check_above(pcout,
+                                  what + "d·H d of the projected tangent",
+                                  D.curvature,
+                                  0.);
+        }
+    return passed;
+  }
+
+  // The centre probe's displacement at the output time closest to t.
+  inline Tensor<1, 3>
+  centre_at(const std::filesystem::path &directory, const double t)
+  {
+    const Csv    probes = read_csv((directory / "probes.csv").string());
+    double       best   = std::numeric_limits<double>::infinity();
+    Tensor<1, 3> u;
+    for (unsigned int r = 0; r < probes.rows.size(); ++r)
+      if (probes.rows[r][probes.column("probe")] == "center" &&
+          std::abs(probes.number(r, "time") - t) < best)
+        {
+          best = std::abs(probes.number(r, "time") - t);
+          u    = Tensor<1, 3>(
+            {probes.number(r, "ux"), probes.number(r, "uy"), probes.number(r, "uz")});
+        }
+    return u;
+  }
+
+  // Every row of the run's statistics.csv has the cloth apart from every obstacle.
+  inline bool
+  check_outside(ConditionalOStream          &pcout,
+                const std::string           &name,
+                const std::filesystem::path &directory)
+  {
+    const Csv statistics = read_csv((directory / "statistics.csv").string());
+    double    closest    = std::numeric_limits<double>::infinity();
+    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
+    return check_above(pcout,
+                       name + ": smallest cloth-obstacle distance, m",
+                       closest,
+                       0.);
+  }
+} // namespace clothsim::test

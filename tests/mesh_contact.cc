@@ -1,0 +1,394 @@
+// Contact with triangle-mesh obstacles, kernel by kernel and as a term:
+// 1. Pair distances (physics/pair_distance.h): on 2,000 random point-triangle and
+//    edge-edge pairs the distance is at most that of any of 40,000 sampled point pairs
+//    of the two primitives and within 1e-4 of the closest one sampled; the closest
+//    points' weights give it (|Σ w_i x_i| = d to 1e-12).
+// 2. The pair barrier (physics/pair_barrier.h): gradient and Hessian against central
+//    differences (relative 1e-5) for every kind and set of moving points, edge-edge
+//    pairs with and without the mollifier at work.
+// 3. The positive semi-definite projection: a 12 x 12 matrix of known eigenvalues
+//    (half negative) becomes the matrix with those set to zero, to 1e-12.
+// 4. The line search's cap (pair_step_bound) on 2,000 random paths, many crossing:
+//    the distance stays at or above the fraction of its start along the whole capped
+//    path (sampled at 1,000 points).
+// 5. The bounding-volume hierarchy finds exactly the overlapping boxes of 5,000.
+// 6. The contact and friction terms of a sheet 2 mm above the apex of a pyramid mesh
+//    (its apex vertex against cloth triangles, its edges against cloth edges, cloth
+//    vertices against its faces): the step potential's gradient and Hessian against
+//    differences (relative 1e-5), friction static and kinetic.
+
+#include "contact_checks.h"
+#include "physics/aabb_tree.h"
+#include "physics/pair_barrier.h"
+#include "physics/pair_distance.h"
+
+#include <random>
+
+using namespace clothsim;
+using namespace clothsim::test;
+using physics::PairKind;
+using physics::PairPoints;
+
+namespace
+{
+  // Points within `spread` of the origin, the second primitive's moved by 0.3 spread.
+  PairPoints
+  random_pair(std::mt19937 &random, const double spread, const PairKind kind)
+  {
+    std::uniform_real_distribution<double> u(-1., 1.);
+    const unsigned int first = kind == PairKind::point_triangle ? 1 : 2;
+    PairPoints         x;
+    for (unsigned int i = 0; i < 4; ++i)
+      for (unsigned int c = 0; c < 3; ++c)
+        x[i][c] = spread * (u(random) + (i < first ? 0. : 0.3));
+    return x;
+  }
+
+  unsigned int
+  n_moving(const std::array<bool, 4> &moving)
+  {
+    return std::count(moving.begin(), moving.end(), true);
+  }
+
+  // The smallest distance between points of the two primitives, by sampling their
+  // parameters on a grid and zooming in on the best sample four times (to about 1e-9 of
+  // their size).
+  double
+  sampled_distance(const PairKind kind, const PairPoints &x)
+  {
+    const auto distance = [&](const double s, const double t) {
+      if (kind == PairKind::point_triangle)
+        return x[0].distance(Point<3>(x[1] + s * (x[2] - x[1]) + t * (x[3] - x[1])));
+      return Point<3>(x[0] + s * (x[1] - x[0]))
+        .distance(Point<3>(x[2] + t * (x[3] - x[2])));
+    };
+    const unsigned int n    = 100;
+    double             best = std::numeric_limits<double>::infinity(), s0 = 0.5, t0 = 0.5;
+    double             width = 1.;
+    for (unsigned int zoom = 0; zoom < 5; ++zoom)
+      {
+        const double sc = s0, tc = t0;
+        for (unsigned int i = 0; i <= n; ++i)
+          for (unsigned int j = 0; j <= n; ++j)
+            {
+              const double s = std::clamp(sc + width * (double(i) / n - 0.5), 0., 1.);
+              const double t = std::clamp(tc + width * (double(j) / n - 0.5), 0., 1.);
+              if (kind == PairKind::point_triangle && s + t > 1.)
+                continue;
+              const double d = distance(s, t);
+              if (d < best)
+                {
+                  best = d;
+                  s0   = s;
+                  t0   = t;
+                }
+            }
+        width = zoom == 0 ? 0.04 : width / 20.;
+      }
+    return best;
+  }
+
+  bool
+  check_distances(ConditionalOStream &pcout)
+  {
+    std::mt19937 random(3);
+    double       excess = 0., shortfall = 0., weight_error = 0.;
+    for (const PairKind kind : {PairKind::point_triangle, PairKind::edge_edge})
+      for (unsigned int sample = 0; sample < 1000; ++sample)
+        {
+          PairPoints x = random_pair(random, 1., kind);
+          if (sample % 10 == 0) // nearly parallel edges, or a point over an edge
+            x[3] = x[2] + (x[1] - x[0]) * 0.7 + Tensor<1, 3>({1e-9, 0., 0.});
+          const physics::DistanceType type = physics::distance_type(kind, x);
+          const double                d = std::sqrt(physics::squared_distance(type, x));
+          const double                sampled = sampled_distance(kind, x);
+          excess                              = std::max(excess, d - sampled);
+          shortfall                           = std::max(shortfall, sampled - d);
+          const auto   w                      = physics::closest_point_weights(type, x);
+          Tensor<1, 3> r;
+          for (unsigned int i = 0; i < 4; ++i)
+            r += w[i] * x[i];
+          weight_error = std::max(weight_error, std::abs(r.norm() - d));
+        }
+    bool passed =
+      check_below(pcout, "distance above the closest sampled pair, m", excess, 1e-12);
+    passed &=
+      check_below(pcout, "distance below the closest sampled pair, m", shortfall, 1e-4);
+    passed &= check_below(pcout,
+                          "| |Σ w_i x_i| - d | of the closest points, m",
+                          weight_error,
+                          1e-12);
+    return passed;
+  }
+
+  bool
+  check_barrier(ConditionalOStream &pcout)
+  {
+    std::mt19937                             random(5);
+    std::uniform_real_distribution<double>   u(-1., 1.);
+    const double                             d_hat = 0.01, kappa = 300.;
+    const std::array<std::array<bool, 4>, 4> masks  = {{{{true, false, false, false}},
+                                                        {{false, true, true, true}},
+                                                        {{true, true, false, false}},
+                                                        {{true, true, true, true}}}};
+    bool                                     passed = true;
+    for (unsigned int m = 0; m < masks.size(); ++m)
+      for (const bool mollified : {false, true})
+        {
+          if (mollified && m != 2)
+            continue;
+          const PairKind kind  = m < 2 ? PairKind::point_triangle : PairKind::edge_edge;
+          double         g_err = 0., h_err = 0.;
+          unsigned int   tried = 0;
+          std::mt19937   local(m + 10 * mollified);
+          while (tried < 50)
+            {
+              PairPoints x = random_pair(local, 0.05, kind);
+              if (mollified) // nearly parallel edges
+                x[3] = x[2] + (x[1] - x[0]) + Tensor<1, 3>({2e-3, -1e-3, 1e-3});
+              const double d = std::sqrt(physics::pair_squared_distance(kind, x));
+              if (d > 0.9 * d_hat || d < 0.1 * d_hat)
+                {
+                  // Move the second primitive to a distance within the barrier.
+                  const auto w =
+                    physics::closest_point_weights(physics::distance_type(kind, x), x);
+                  Tensor<1, 3> r;
+                  for (unsigned int i = 0; i < 4; ++i)
+                    r += w[i] * x[i];
+                  const double target = d_hat * (0.2 + 0.6 * (0.5 + 0.5 * u(random)));
+                  const unsigned int first = kind == PairKind::point_triangle ? 1 : 2;
+                  for (unsigned int i = first; i < 4; ++i)
+                    x[i] += r * (1. - target / r.norm());
+                }
+              const double dd = std::sqrt(physics::pair_squared_distance(kind, x));
+              if (dd >= d_hat || dd <= 0.)
+                continue;
+              const double threshold =
+                mollified
+                  ? physics::mollifier_threshold(x[0].distance(x[1]), x[2].distance(x[3]))
+                  : 0.;
+              const physics::PairBarrier b = physics::pair_barrier(
+                kind, x, masks[m], kappa, d_hat, threshold, 2, false);
+              const double h = 1e-8;
+              unsigned int k = 0;
+              for (unsigned int i = 0; i < 4; ++i)
+                if (masks[m][i])
+                  for (unsigned int c = 0; c < 3; ++c, ++k)
+                    {
+                      PairPoints plus = x, minus = x;
+                      plus[i][c] += h;
+                      minus[i][c] -= h;
+                      const auto bp = physics::pair_barrier(
+                        kind, plus, masks[m], kappa, d_hat, threshold, 2, false);
+                      const auto bm = physics::pair_barrier(
+                        kind, minus, masks[m], kappa, d_hat, threshold, 2, false);
+                      double g_scale = 0., h_scale = 0.;
+                      for (unsigned int j = 0; j < b.n; ++j)
+                        {
+                          g_scale = std::max(g_scale, std::abs(b.gradient[j]));
+                          h_scale = std::max(h_scale, std::abs(b.hessian[j * b.n + k]));
+                        }
+                      g_err = std::max(g_err,
+                                       std::abs((bp.value - bm.value) / (2. * h) -
+                                                b.gradient[k]) /
+                                         g_scale);
+                      for (unsigned int j = 0; j < b.n; ++j)
+                        h_err =
+                          std::max(h_err,
+                                   std::abs((bp.gradient[j] - bm.gradient[j]) / (2. * h) -
+                                            b.hessian[j * b.n + k]) /
+                                     h_scale);
+                    }
+              ++tried;
+            }
+          const std::string what =
+            std::string(kind == PairKind::point_triangle ? "point-triangle"
+                                                         : "edge-edge") +
+            ", " + std::to_string(n_moving(masks[m])) + " moving" +
+            (mollified ? ", mollified" : "") + ": ";
+          passed &=
+            check_below(pcout, what + "gradient against differences", g_err, 1e-5);
+          passed &= check_below(pcout, what + "Hessian against differences", h_err, 1e-5);
+        }
+    return passed;
+  }
+
+  bool
+  check_projection(ConditionalOStream &pcout)
+  {
+    // A = Q diag(λ) Qᵀ with Q from Gram-Schmidt of random columns.
+    const unsigned int                     n = 12;
+    std::mt19937                           random(9);
+    std::uniform_real_distribution<double> u(-1., 1.);
+    std::array<Tensor<1, 12>, 12>          Q;
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        for (unsigned int i = 0; i < n; ++i)
+          Q[k][i] = u(random);
+        for (unsigned int j = 0; j < k; ++j)
+          Q[k] -= (Q[k] * Q[j]) * Q[j];
+        Q[k] /= Q[k].norm();
+      }
+    std::array<double, 144> A{}, expected{};
+    for (unsigned int k = 0; k < n; ++k)
+      {
+        const double lambda = (k % 2 == 0 ? -1. : 1.) * (1. + k);
+        for (unsigned int i = 0; i < n; ++i)
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              A[i * n + j] += lambda * Q[k][i] * Q[k][j];
+              expected[i * n + j] += std::max(lambda, 0.) * Q[k][i] * Q[k][j];
+            }
+      }
+    physics::project_to_positive_semidefinite(A.data(), n);
+    double error = 0.;
+    for (unsigned int i = 0; i < n * n; ++i)
+      error = std::max(error, std::abs(A[i] - expected[i]));
+    return check_below(pcout,
+                       "projection of a 12 x 12 matrix, largest error",
+                       error,
+                       1e-12);
+  }
+
+  bool
+  check_step_bounds(ConditionalOStream &pcout)
+  {
+    std::mt19937                           random(13);
+    std::uniform_real_distribution<double> u(-1., 1.);
+    const double                           fraction = 0.1;
+    bool                                   passed   = true;
+    for (const PairKind kind : {PairKind::point_triangle, PairKind::edge_edge})
+      {
+        double       worst  = std::numeric_limits<double>::infinity();
+        unsigned int capped = 0;
+        for (unsigned int sample = 0; sample < 1000; ++sample)
+          {
+            const PairPoints x  = random_pair(random, 0.1, kind);
+            const double     d0 = std::sqrt(physics::pair_squared_distance(kind, x));
+            // The first primitive toward the second's centre and beyond.
+            PairPoints         dx;
+            const Tensor<1, 3> toward =
+              (kind == PairKind::point_triangle ? (x[1] + x[2] + x[3]) / 3. - x[0]
+                                                : (x[2] + x[3] - x[0] - x[1]) / 2.) *
+              (1. + 2. * (0.5 + 0.5 * u(random)));
+            for (unsigned int i = 0; i < 4; ++i)
+              for (unsigned int c = 0; c < 3; ++c)
+                dx[i][c] =
+                  0.05 * u(random) +
+                  ((i < (kind == PairKind::point_triangle ? 1u : 2u)) ? toward[c] : 0.);
+            const double alpha = physics::pair_step_bound(kind, x, dx, fraction);
+            capped += alpha < 1. ? 1 : 0;
+            for (unsigned int k = 0; k <= 1000; ++k)
+              {
+                PairPoints y;
+                for (unsigned int i = 0; i < 4; ++i)
+                  y[i] = x[i] + (alpha * k / 1000.) * dx[i];
+                worst = std::min(worst,
+                                 std::sqrt(physics::pair_squared_distance(kind, y)) / d0);
+              }
+          }
+        const std::string name =
+          kind == PairKind::point_triangle ? "point-triangle" : "edge-edge";
+        pcout << "  " << name << ": " << capped << " of 1000 paths capped" << std::endl;
+        passed &= check_at_least(pcout,
+                                 name + ": smallest d / d0 on the capped paths",
+                                 worst,
+                                 fraction * (1. - 1e-12));
+        passed &= check_above(pcout, name + ": paths capped", capped, 200);
+      }
+    return passed;
+  }
+
+  bool
+  check_tree(ConditionalOStream &pcout)
+  {
+    std::mt19937                           random(17);
+    std::uniform_real_distribution<double> u(0., 1.);
+    std::vector<physics::Box>              boxes;
+    for (unsigned int k = 0; k < 5000; ++k)
+      {
+        const Point<3> a(u(random), u(random), u(random));
+        const Point<3> b = a + 0.03 * Point<3>(u(random), u(random), u(random));
+        boxes.push_back(physics::Box::around(std::array<Point<3>, 2>{{a, b}}));
+      }
+    const physics::AabbTree tree(boxes);
+    unsigned int            wrong = 0, found_total = 0;
+    for (unsigned int q = 0; q < 200; ++q)
+      {
+        const Point<3>     a(u(random), u(random), u(random));
+        const physics::Box query =
+          physics::Box::around(std::array<Point<3>, 1>{{a}}, 0.1 * u(random));
+        std::vector<unsigned int> found;
+        tree.find(query, found);
+        std::sort(found.begin(), found.end());
+        std::vector<unsigned int> brute;
+        for (unsigned int k = 0; k < boxes.size(); ++k)
+          if (boxes[k].overlaps(query))
+            brute.push_back(k);
+        wrong += found == brute ? 0 : 1;
+        found_total += found.size();
+      }
+    pcout << "  " << found_total << " overlaps found in 200 queries" << std::endl;
+    return check_equal(pcout, "queries with a wrong answer", wrong, 0u);
+  }
+
+  // A flat pyramid, 2 cm high on a 0.4 m square, its apex at `apex`.
+  std::shared_ptr<const physics::ObstacleSurface>
+  pyramid(const Point<3> &apex)
+  {
+    std::vector<Point<3>> v = {apex,
+                               apex + Point<3>(-0.2, -0.2, -0.02),
+                               apex + Point<3>(0.2, -0.2, -0.02),
+                               apex + Point<3>(0.2, 0.2, -0.02),
+                               apex + Point<3>(-0.2, 0.2, -0.02)};
+    return std::make_shared<const physics::ObstacleSurface>(
+      v,
+      std::vector<std::array<unsigned int, 3>>{
+        {{0, 1, 2}}, {{0, 2, 3}}, {{0, 3, 4}}, {{0, 4, 1}}},
+      std::vector<std::array<unsigned int, 2>>{
+        {{0, 1}}, {{0, 2}}, {{0, 3}}, {{0, 4}}, {{1, 2}}, {{2, 3}}, {{3, 4}}, {{4, 1}}});
+  }
+
+  bool
+  check_terms(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    physics::ObstacleShape shape;
+    shape.core = physics::ObstacleCore::mesh;
+    // The sheet is the unit square at z = 0; the apex 2 mm below a point inside a
+    // triangle, off the mesh's lines.
+    shape.surface = pyramid(Point<3>(0.513, 0.487, -0.002));
+    std::vector<physics::Obstacle> obstacles;
+    obstacles.emplace_back(
+      "pyramid",
+      shape,
+      0.4,
+      [](double) { return Tensor<1, 3>(); },
+      Tensor<1, 3>({0., 0., 1.}),
+      [](double) { return 0.; });
+    return check_contact_terms(pcout, mesh, obstacles, 3);
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout  = env.pcout;
+  bool                passed = true;
+  pcout << "Pair distances" << std::endl;
+  passed &= check_distances(pcout);
+  pcout << "Pair barrier" << std::endl;
+  passed &= check_barrier(pcout);
+  passed &= check_projection(pcout);
+  pcout << "Continuous collision detection" << std::endl;
+  passed &= check_step_bounds(pcout);
+  pcout << "Bounding-volume hierarchy" << std::endl;
+  passed &= check_tree(pcout);
+  pcout << "Terms: a sheet over a pyramid" << std::endl;
+  const std::filesystem::path root = scratch_directory("clothsim-mesh-contact");
+  passed &=
+    check_terms(pcout,
+                scratch_mesh(root / "mesh", {"swing-21.geo", "swing-grid.geo.inc"}));
+  return finish(pcout, passed);
+}

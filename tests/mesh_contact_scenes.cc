@@ -1,0 +1,222 @@
+// Contact with triangle-mesh obstacles in whole runs, against closed forms and
+// invariants. The sheet is params/contact/sheet-on-sphere.prm (1 m², cotton, 0.1 kg) on
+// the N = 21 swing mesh (5 cm triangles); the obstacles are OBJ files written here. Every
+// run's statistics.csv must show every cloth-obstacle pair apart at every step
+// (contact_min_distance > 0).
+// 1. At rest on a flat mesh (a 2 m square of 8 x 8 x 2 triangles 4 mm below the sheet;
+//    backward Euler, 1 s, Newton solved tightly) the barrier carries the weight: the
+//    obstacle's force on the sheet equals m g within 1e-6.
+// 2. On the flat mesh tilted (gravity turned by θ = 30°, μ = 0.3) the sheet slides with
+//    a = g (sin θ - μ cos θ) within 1 % (friction of vertex-triangle and edge-edge
+//    pairs).
+// 3. A sharp obstacle smaller than the cloth's triangles: a pyramid 3 cm high on a 3 cm
+//    base, apex up, rising at 5 m/s from below the sheet's centre (off its vertices and
+//    lines). Vertex contact alone would let the apex through between the vertices; the
+//    apex against the cloth's triangles catches the sheet: after 0.2 s (the apex 1 m up)
+//    the sheet's centre vertex, 2 cm from the apex, is within 1 cm of its height.
+// 4. The shipped scene (params/contact/sheet-on-table-mesh.prm, N = 21, 1.5 s): the
+//    sheet lands on the square table's top, its centre comes to rest within the contact
+//    thickness above it, and the corners hang below the top.
+
+#include "contact_checks.h"
+
+#include <fstream>
+
+using namespace clothsim;
+using namespace clothsim::test;
+
+namespace
+{
+  namespace fs = std::filesystem;
+
+  const fs::path root = scratch_directory("clothsim-mesh-contact-scenes");
+
+  // A 2 m x 2 m square in the plane z = height, centred under the sheet, as n x n
+  // squares of two triangles each.
+  std::string
+  write_flat_mesh(const double height, const unsigned int n)
+  {
+    const fs::path file = root / "flat.obj";
+    fs::create_directories(root);
+    std::ofstream out(file);
+    for (unsigned int j = 0; j <= n; ++j)
+      for (unsigned int i = 0; i <= n; ++i)
+        out << "v " << -0.5 + 2. * i / n << ' ' << -0.5 + 2. * j / n << ' ' << height
+            << '\n';
+    for (unsigned int j = 0; j < n; ++j)
+      for (unsigned int i = 0; i < n; ++i)
+        {
+          const unsigned int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+          out << "f " << a << ' ' << b << ' ' << d << "\nf " << a << ' ' << d << ' ' << c
+              << '\n';
+        }
+    return file.string();
+  }
+
+  // A pyramid, apex up at `apex`, of height and base side s.
+  std::string
+  write_pyramid(const Point<3> &apex, const double s)
+  {
+    const fs::path file = root / "pyramid.obj";
+    fs::create_directories(root);
+    std::ofstream out(file);
+    out << "v " << apex[0] << ' ' << apex[1] << ' ' << apex[2] << '\n';
+    for (const auto &[dx, dy] : std::array<std::pair<double, double>, 4>{
+           {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}})
+      out << "v " << apex[0] + s * dx << ' ' << apex[1] + s * dy << ' ' << apex[2] - s
+          << '\n';
+    out << "f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 2\nf 2 4 3\nf 2 5 4\n";
+    return file.string();
+  }
+
+  bool
+  run(ConditionalOStream             &pcout,
+      const std::string              &name,
+      const std::string              &scene,
+      const std::vector<std::string> &overrides,
+      GuardedRun                     &result)
+  {
+    result      = run_guarded(pcout,
+                         source_path(scene),
+                         join(overrides, {"Output/Progress=off"}),
+                         root / name,
+                         MPI_COMM_WORLD);
+    bool passed = result.passed;
+    passed &=
+      check_above(pcout, name + ": finished (1) or stopped (0)", result.finished, 0.5);
+    if (!result.files_read)
+      return false;
+    passed &= check_outside(pcout, name, root / name);
+    return passed;
+  }
+
+  std::vector<std::string>
+  on_mesh(const std::string &mesh, const std::string &obstacle)
+  {
+    return {"Mesh/Mesh file=" + mesh,
+            "Obstacle 1/Shape=mesh",
+            "Obstacle 1/Mesh file=" + obstacle};
+  }
+
+  bool
+  check_resting(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    GuardedRun result;
+    bool       passed = run(pcout,
+                      "resting",
+                      "params/contact/sheet-on-sphere.prm",
+                      join(on_mesh(mesh, write_flat_mesh(-0.004, 8)),
+                           {"Time/Integrator=backward euler",
+                                  "Time/End time=1",
+                                  "Nonlinear solver/Truncation error fraction=0",
+                                  "Nonlinear solver/Displacement tolerance=1e-13",
+                                  "Nonlinear solver/Absolute tolerance=1e-13"}),
+                      result);
+    if (!passed)
+      return false;
+    const Csv    statistics = read_csv((root / "resting" / "statistics.csv").string());
+    const double force  = statistics.number(statistics.rows.size() - 1, "ball_force_z");
+    const double weight = 0.1 * 9.81;
+    passed &= check_near(pcout,
+                         "resting: the flat mesh's force on the sheet / (m g)",
+                         force / weight,
+                         1.,
+                         1e-6);
+    return passed;
+  }
+
+  bool
+  check_incline(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    const double pi = numbers::PI, g = 9.81, mu = 0.3, theta = pi / 6.;
+    GuardedRun   result;
+    bool         passed = run(pcout,
+                      "sliding",
+                      "params/contact/sheet-on-sphere.prm",
+                      join(on_mesh(mesh, write_flat_mesh(-0.004, 8)),
+                           {"Obstacle 1/Friction=0.3",
+                                    "Loads/Gravity=" + number(g * std::sin(theta)) + ", 0, " +
+                                      number(-g * std::cos(theta)),
+                                    "Time/End time=0.6"}),
+                      result);
+    if (!passed)
+      return false;
+    const fs::path directory = root / "sliding";
+    const double   h         = 0.2;
+    const double   a = (centre_at(directory, 0.6)[0] - 2. * centre_at(directory, 0.4)[0] +
+                      centre_at(directory, 0.2)[0]) /
+                     (h * h);
+    const double expected = g * (std::sin(theta) - mu * std::cos(theta));
+    return check_near(pcout,
+                      "sliding: acceleration along the incline, m/s²",
+                      a,
+                      expected,
+                      0.01 * expected);
+  }
+
+  bool
+  check_sharp_obstacle(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    GuardedRun result;
+    // The apex starts 1 cm below the sheet, under a point off its vertices and lines.
+    const Point<3> apex(0.512, 0.487, -0.01);
+    bool           passed = run(pcout,
+                      "sharp obstacle",
+                      "params/contact/sheet-on-sphere.prm",
+                      join(on_mesh(mesh, write_pyramid(apex, 0.03)),
+                           {"Obstacle 1/Translation=0; 0; 5*t", "Time/End time=0.2"}),
+                      result);
+    if (!passed)
+      return false;
+    const double top = apex[2] + 5. * 0.2;
+    // The sheet tents over the apex; its centre vertex, 2 cm off, a little lower.
+    passed &= check_above(pcout,
+                          "sharp obstacle: the centre's height - the apex's at 0.2 s, m",
+                          centre_at(root / "sharp obstacle", 0.2)[2] - top,
+                          -0.01);
+    return passed;
+  }
+
+  bool
+  check_table(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    GuardedRun result;
+    bool       passed = run(pcout,
+                      "table",
+                      "params/contact/sheet-on-table-mesh.prm",
+                      {"Mesh/Mesh file=" + mesh},
+                      result);
+    if (!passed)
+      return false;
+    // The top is 1 cm below the sheet.
+    const double gap = centre_at(root / "table", 1.5)[2] + 0.01;
+    passed &= check_above(pcout, "table: the centre's gap at 1.5 s, m", gap, 0.);
+    passed &= check_below(pcout, "table: the centre's gap at 1.5 s, m", gap, 0.005);
+    const Csv probes = read_csv((root / "table" / "probes.csv").string());
+    double    corner = 0.;
+    for (unsigned int r = 0; r < probes.rows.size(); ++r)
+      if (probes.rows[r][probes.column("probe")] == "corner")
+        corner = probes.number(r, "uz");
+    passed &= check_below(pcout, "table: the corner's height at 1.5 s, m", corner, -0.1);
+    return passed;
+  }
+} // namespace
+
+
+int
+main(int argc, char **argv)
+{
+  Environment         env(argc, argv);
+  ConditionalOStream &pcout = env.pcout;
+  const std::string   mesh =
+    scratch_mesh(root / "mesh", {"swing-21.geo", "swing-grid.geo.inc"});
+  pcout << "1. a sheet at rest on a flat mesh" << std::endl;
+  bool passed = check_resting(pcout, mesh);
+  pcout << "2. a sheet sliding on a tilted flat mesh" << std::endl;
+  passed &= check_incline(pcout, mesh);
+  pcout << "3. a sharp obstacle smaller than the cloth's triangles" << std::endl;
+  passed &= check_sharp_obstacle(pcout, mesh);
+  pcout << "4. a sheet falling onto a square table (mesh)" << std::endl;
+  passed &= check_table(pcout, mesh);
+  return finish(pcout, passed);
+}
