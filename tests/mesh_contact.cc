@@ -2,7 +2,8 @@
 // 1. Pair distances (physics/pair_distance.h): on 2,000 random point-triangle and
 //    edge-edge pairs the distance is at most that of any of 40,000 sampled point pairs
 //    of the two primitives and within 1e-4 of the closest one sampled; the closest
-//    points' weights give it (|Σ w_i x_i| = d to 1e-12).
+//    points' weights give it (|Σ w_i x_i| = d to 1e-12); 2,000 random segments cross
+//    their triangle exactly when solving for the intersection point says so.
 // 2. The pair barrier (physics/pair_barrier.h): gradient and Hessian against central
 //    differences (relative 1e-5) for every kind and set of moving points, edge-edge
 //    pairs with and without the mollifier at work.
@@ -16,6 +17,9 @@
 //    (its apex vertex against cloth triangles, its edges against cloth edges, cloth
 //    vertices against its faces): the step potential's gradient and Hessian against
 //    differences (relative 1e-5), friction static and kinetic.
+
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 
 #include "contact_checks.h"
 #include "physics/aabb_tree.h"
@@ -118,6 +122,41 @@ namespace
                           "| |Σ w_i x_i| - d | of the closest points, m",
                           weight_error,
                           1e-12);
+
+    // Segments through triangles, against solving a + s (b - a) = t0 + u e0 + v e1.
+    unsigned int wrong = 0, crossing = 0;
+    for (unsigned int sample = 0; sample < 2000; ++sample)
+      {
+        // A segment through a point of the triangle's plane, inside or outside it, its
+        // ends on either side or on one.
+        const PairPoints x  = random_pair(random, 1., PairKind::edge_edge);
+        const Point<3>   t0 = x[0], t1 = x[1], t2 = x[2];
+        std::uniform_real_distribution<double> in(-0.3, 1.), along(-0.5, 1.);
+        const double                           u = in(random), v = in(random) * (1. - u);
+        const Point<3>                         p(t0 + u * (t1 - t0) + v * (t2 - t0));
+        const Tensor<1, 3>                     d = x[3] - x[0];
+        const Point<3>     a(p + along(random) * d), b(p - along(random) * d);
+        FullMatrix<double> M(3, 3), inverse(3, 3);
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            M(c, 0) = b[c] - a[c];
+            M(c, 1) = t0[c] - t1[c];
+            M(c, 2) = t0[c] - t2[c];
+          }
+        inverse.invert(M);
+        Vector<double> rhs(3), stu(3);
+        for (unsigned int c = 0; c < 3; ++c)
+          rhs[c] = t0[c] - a[c];
+        inverse.vmult(stu, rhs);
+        const bool expected = stu[0] >= 0. && stu[0] <= 1. && stu[1] >= 0. &&
+                              stu[2] >= 0. && stu[1] + stu[2] <= 1.;
+        crossing += expected ? 1 : 0;
+        wrong += expected != physics::segment_crosses_triangle(a, b, t0, t1, t2) ? 1 : 0;
+      }
+    pcout << "  " << crossing << " of 2000 random segments cross their triangle"
+          << std::endl;
+    passed &= check_equal(pcout, "segment-triangle crossings misjudged", wrong, 0u);
+    passed &= check_above(pcout, "segments crossing", crossing, 100);
     return passed;
   }
 

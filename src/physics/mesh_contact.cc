@@ -328,6 +328,53 @@ namespace clothsim::physics
            << obstacles[pair.obstacle].name() << "'";
       found = text.str();
     });
+    // Crossings (a cloth that starts through an obstacle has no pair at distance 0).
+    const auto describe = [](const Point<3> &x) {
+      std::ostringstream text;
+      text << "(" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+      return text.str();
+    };
+    std::vector<unsigned int> hits;
+    for (const unsigned int o : mesh_obstacles)
+      {
+        if (!found.empty())
+          break;
+        const ObstacleSurface &surface = *obstacles[o].shape().surface;
+        const auto            &v       = surface.vertices;
+        const std::string      name    = "obstacle '" + obstacles[o].name() + "'";
+        for (const auto &[a, b] : edges)
+          {
+            const std::array<Point<3>, 2> y = {{poses[o].to_body(position(a, u_local)),
+                                                poses[o].to_body(position(b, u_local))}};
+            hits.clear();
+            surface.triangle_tree.find(Box::around(y), hits);
+            for (const unsigned int k : hits)
+              {
+                const auto &t = surface.triangles[k];
+                if (found.empty() &&
+                    segment_crosses_triangle(y[0], y[1], v[t[0]], v[t[1]], v[t[2]]))
+                  found = "the cloth edge at " + describe(position(a, u_local)) +
+                          " passes through " + name;
+              }
+          }
+        for (const auto &triangle : triangles)
+          {
+            std::array<Point<3>, 3> y;
+            for (unsigned int i = 0; i < 3; ++i)
+              y[i] = poses[o].to_body(position(triangle[i], u_local));
+            hits.clear();
+            surface.edge_tree.find(Box::around(y), hits);
+            for (const unsigned int k : hits)
+              {
+                const auto &e = surface.edges[k];
+                if (found.empty() &&
+                    segment_crosses_triangle(v[e[0]], v[e[1]], y[0], y[1], y[2]))
+                  found = "an edge of " + name +
+                          " passes through the cloth triangle at " +
+                          describe(position(triangle[0], u_local));
+              }
+          }
+      }
     return found;
   }
 

@@ -71,8 +71,8 @@ namespace clothsim::physics
            std::vector<Tensor<1, 3>>    &forces,
            std::vector<unsigned int>    &contacts) const;
 
-    // A pair at distance 0 (touching or crossed within the thickness) at u, described;
-    // empty if none on this rank.
+    // A pair at distance 0, a cloth edge through an obstacle's triangle or an obstacle's
+    // edge through a cloth triangle at u, described; empty if none on this rank.
     std::string
     touching(const double *u_local, const std::vector<RigidPose> &poses) const;
 

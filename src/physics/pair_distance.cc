@@ -159,6 +159,27 @@ namespace clothsim::physics
   }
 
 
+  bool
+  segment_crosses_triangle(const Point<3> &a,
+                           const Point<3> &b,
+                           const Point<3> &t0,
+                           const Point<3> &t1,
+                           const Point<3> &t2)
+  {
+    // Six times the signed volume of the tetrahedron p q r s.
+    const auto volume =
+      [](const Point<3> &p, const Point<3> &q, const Point<3> &r, const Point<3> &s) {
+        return (q - p) * cross_product_3d(r - p, s - p);
+      };
+    const double va = volume(a, t0, t1, t2), vb = volume(b, t0, t1, t2);
+    if ((va > 0. && vb > 0.) || (va < 0. && vb < 0.))
+      return false;
+    const double e0 = volume(a, b, t0, t1), e1 = volume(a, b, t1, t2),
+                 e2 = volume(a, b, t2, t0);
+    return (e0 >= 0. && e1 >= 0. && e2 >= 0.) || (e0 <= 0. && e1 <= 0. && e2 <= 0.);
+  }
+
+
   double
   pair_step_bound(const PairKind    kind,
                   const PairPoints &x,

@@ -58,6 +58,16 @@ namespace clothsim::physics
   std::array<double, 4>
   closest_point_weights(const DistanceType &type, const PairPoints &x);
 
+  // Whether the segment a b passes through the triangle t0 t1 t2 (touching counts): the
+  // ends on both sides of the triangle's plane, and the line through them on the same
+  // side of each of its edges (signs of volumes).
+  bool
+  segment_crosses_triangle(const Point<3> &a,
+                           const Point<3> &b,
+                           const Point<3> &t0,
+                           const Point<3> &t1,
+                           const Point<3> &t2);
+
   // Both at once: the squared distance between the primitives.
   inline double
   pair_squared_distance(const PairKind kind, const PairPoints &x)
