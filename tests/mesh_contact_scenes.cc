@@ -17,10 +17,16 @@
 // 4. The shipped scene (params/contact/sheet-on-table-mesh.prm, N = 21, 1.5 s): the
 //    sheet lands on the square table's top, its centre comes to rest within the contact
 //    thickness above it, and the corners hang below the top.
+// 5. A ball given as a mesh (an icosphere of 1,280 triangles, radius 25 cm) turning at
+//    ±3 rad/s about x with μ = 0.8 (params/contact/sheet-on-rotating-sphere.prm, first 1
+//    s): the sheet that falls onto it follows its top, by more than 5 cm either way (the
+//    moving obstacle's feasible start and the friction of pairs).
 
 #include "contact_checks.h"
 
 #include <fstream>
+#include <iomanip>
+#include <map>
 
 using namespace clothsim;
 using namespace clothsim::test;
@@ -66,6 +72,62 @@ namespace
       out << "v " << apex[0] + s * dx << ' ' << apex[1] + s * dy << ' ' << apex[2] - s
           << '\n';
     out << "f 1 2 3\nf 1 3 4\nf 1 4 5\nf 1 5 2\nf 2 4 3\nf 2 5 4\n";
+    return file.string();
+  }
+
+  // A sphere of `radius` about `centre` as an icosahedron subdivided three times (1,280
+  // triangles, edges of about 0.16 radius).
+  std::string
+  write_ball(const Point<3> &centre, const double radius)
+  {
+    const double                             g = (1. + std::sqrt(5.)) / 2.;
+    std::vector<Point<3>>                    v = {{-1, g, 0},
+                                                  {1, g, 0},
+                                                  {-1, -g, 0},
+                                                  {1, -g, 0},
+                                                  {0, -1, g},
+                                                  {0, 1, g},
+                                                  {0, -1, -g},
+                                                  {0, 1, -g},
+                                                  {g, 0, -1},
+                                                  {g, 0, 1},
+                                                  {-g, 0, -1},
+                                                  {-g, 0, 1}};
+    std::vector<std::array<unsigned int, 3>> f = {
+      {{0, 11, 5}}, {{0, 5, 1}},  {{0, 1, 7}},   {{0, 7, 10}}, {{0, 10, 11}},
+      {{1, 5, 9}},  {{5, 11, 4}}, {{11, 10, 2}}, {{10, 7, 6}}, {{7, 1, 8}},
+      {{3, 9, 4}},  {{3, 4, 2}},  {{3, 2, 6}},   {{3, 6, 8}},  {{3, 8, 9}},
+      {{4, 9, 5}},  {{2, 4, 11}}, {{6, 2, 10}},  {{8, 6, 7}},  {{9, 8, 1}}};
+    for (unsigned int level = 0; level < 3; ++level)
+      {
+        std::map<std::pair<unsigned int, unsigned int>, unsigned int> middle;
+        const auto at = [&](const unsigned int a, const unsigned int b) {
+          const auto key            = std::minmax(a, b);
+          const auto [slot, is_new] = middle.emplace(key, v.size());
+          if (is_new)
+            v.push_back(Point<3>((v[a] + v[b]) / 2.));
+          return slot->second;
+        };
+        std::vector<std::array<unsigned int, 3>> finer;
+        for (const auto &[a, b, c] : f)
+          {
+            const unsigned int ab = at(a, b), bc = at(b, c), ca = at(c, a);
+            finer.insert(finer.end(),
+                         {{{a, ab, ca}}, {{b, bc, ab}}, {{c, ca, bc}}, {{ab, bc, ca}}});
+          }
+        f = finer;
+      }
+    const fs::path file = root / "ball.obj";
+    fs::create_directories(root);
+    std::ofstream out(file);
+    out << std::setprecision(17);
+    for (const Point<3> &p : v)
+      {
+        const Point<3> x(centre + radius * p / p.norm());
+        out << "v " << x[0] << ' ' << x[1] << ' ' << x[2] << '\n';
+      }
+    for (const auto &[a, b, c] : f)
+      out << "f " << a + 1 << ' ' << b + 1 << ' ' << c + 1 << '\n';
     return file.string();
   }
 
@@ -178,6 +240,35 @@ namespace
   }
 
   bool
+  check_turning_ball(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    bool passed = true;
+    for (const double omega : {3., -3.})
+      {
+        const std::string name = "mesh ball turning at " + number(omega) + " rad/s";
+        GuardedRun        result;
+        passed &= run(pcout,
+                      name,
+                      "params/contact/sheet-on-rotating-sphere.prm",
+                      join(on_mesh(mesh, write_ball(Point<3>(0.5, 0.5, -0.3), 0.25)),
+                           {"Time/End time=1",
+                            "Obstacle 1/Rotation angle=" + number(omega) + "*t"}),
+                      result);
+        if (!result.files_read)
+          continue;
+        // The sheet follows the ball's top, which moves along -ω y.
+        const double along = -centre_at(root / name, 1.)[1] * (omega > 0. ? 1. : -1.);
+        passed &=
+          check_above(pcout,
+                      name +
+                        ": the centre's displacement along the top's motion at 1 s, m",
+                      along,
+                      0.05);
+      }
+    return passed;
+  }
+
+  bool
   check_table(ConditionalOStream &pcout, const std::string &mesh)
   {
     GuardedRun result;
@@ -218,5 +309,7 @@ main(int argc, char **argv)
   passed &= check_sharp_obstacle(pcout, mesh);
   pcout << "4. a sheet falling onto a square table (mesh)" << std::endl;
   passed &= check_table(pcout, mesh);
+  pcout << "5. a turning ball (mesh) drags the sheet" << std::endl;
+  passed &= check_turning_ball(pcout, mesh);
   return finish(pcout, passed);
 }
