@@ -101,6 +101,16 @@ namespace clothsim::test
     return u;
   }
 
+  // The centre's acceleration from the second difference of its x at 0.2, 0.4, 0.6 s.
+  inline double
+  acceleration(const std::filesystem::path &directory)
+  {
+    const double h = 0.2;
+    return (centre_at(directory, 0.6)[0] - 2. * centre_at(directory, 0.4)[0] +
+            centre_at(directory, 0.2)[0]) /
+           (h * h);
+  }
+
   // Every row of the run's statistics.csv has the cloth apart from every obstacle.
   inline bool
   check_outside(ConditionalOStream          &pcout,

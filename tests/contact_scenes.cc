@@ -77,16 +77,6 @@ namespace
             "Time/End time=0.6"};
   }
 
-  // The centre's acceleration from the second difference of its x at 0.2, 0.4, 0.6 s.
-  double
-  acceleration(const fs::path &directory)
-  {
-    const double h = 0.2;
-    return (centre_at(directory, 0.6)[0] - 2. * centre_at(directory, 0.4)[0] +
-            centre_at(directory, 0.2)[0]) /
-           (h * h);
-  }
-
   bool
   check_incline(ConditionalOStream &pcout, const std::string &mesh)
   {
