@@ -32,6 +32,7 @@
 #   --sizes "N ..."   vertices per side (default "21 41 81 161 321"; a meshes/swing-N.geo
 #                     must exist)
 #   --end-time T      simulated time, s (default 2, as the scene)
+#   --models "M ..."  models to run (default "fem mass-spring"; fem/ms needs both)
 #   --ranks "R ..."   MPI ranks per run (default "1"); e.g. "1 2" runs everything on one
 #                     rank and under mpirun -np 2, and prints the speedup
 #   --params FILE     parameter file (default params/benchmarks/swing.prm; e.g.
@@ -51,6 +52,7 @@ set -uo pipefail
 repository=$(cd "$(dirname "$0")/.." && pwd)
 sizes="21 41 81 161 321"
 ranks_list="1"
+models="fem mass-spring"
 end_time=2
 params="$repository/params/benchmarks/swing.prm"
 build="$repository/build"
@@ -68,12 +70,13 @@ die() {
 
 while [ $# -gt 0 ]; do
   case "$1" in
-    --sizes | --end-time | --ranks | --params | --set | --build | --output)
+    --sizes | --end-time | --ranks | --models | --params | --set | --build | --output)
       [ $# -ge 2 ] || die "$1 expects a value"
       case "$1" in
         --sizes) sizes=$2 ;;
         --end-time) end_time=$2 ;;
         --ranks) ranks_list=$2 ;;
+        --models) models=$2 ;;
         --params) params=$2 ;;
         --set) overrides+=(--set "$2") ;;
         --build) build=$2 ;;
@@ -99,6 +102,11 @@ clothsim="$build/clothsim"
 params=$(cd "$(dirname "$params")" && pwd)/$(basename "$params")
 awk -v t="$end_time" 'BEGIN { exit !(t ~ /^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && t > 0) }' ||
   die "--end-time: '$end_time' is not a positive number"
+for model in $models; do
+  [ "$model" = fem ] || [ "$model" = mass-spring ] ||
+    die "--models: unknown model '$model' (fem or mass-spring)"
+done
+[ -n "${models// /}" ] || die "--models: no model given"
 sizes=$(tr -s ' \t' '\n' <<<"$sizes" | grep . | sort -n -u | tr '\n' ' ')
 sizes=${sizes% }
 [ -n "$sizes" ] || die "--sizes: no size given"
@@ -214,7 +222,7 @@ trap 'finish 1; echo "benchmark-swing: interrupted; runs kept in $output" >&2; e
 echo "benchmark-swing: $(basename "$params"), end time $end_time s, sizes $sizes${overrides[*]+, ${overrides[*]}}" >&2
 for n in $sizes; do
   for ranks in $ranks_list; do
-    for model in fem mass-spring; do
+    for model in $models; do
       directory="$output/N-$n/$model"
       [ "$ranks" -gt 1 ] && directory="$directory-np$ranks"
       mkdir -p "$directory" || die "cannot create '$directory'"

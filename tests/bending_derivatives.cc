@@ -45,6 +45,8 @@ namespace
           return "sine";
         case DirectorFunction::tangent:
           return "tangent";
+        case DirectorFunction::half_tangent:
+          return "half tangent";
       }
     return "?";
   }
@@ -286,8 +288,10 @@ main()
   WorstCase rebased_tilt_check{"4. re-based chart, |δ' - δ|, rad", 1e-12};
   WorstCase rebased_energy_check{"4. re-based chart, |W' - W| / |W|", 1e-10};
 
-  for (const DirectorFunction function :
-       {DirectorFunction::angle, DirectorFunction::sine, DirectorFunction::tangent})
+  for (const DirectorFunction function : {DirectorFunction::angle,
+                                          DirectorFunction::sine,
+                                          DirectorFunction::tangent,
+                                          DirectorFunction::half_tangent})
     for (const bool curved : {false, true})
       for (unsigned int trial = 0; trial < 200; ++trial)
         {

@@ -70,10 +70,12 @@ namespace clothsim::test
     std::array<double, 3>       curvatures;
     for (unsigned int i = 0; i < 3; ++i)
       {
-        const double f = (function == DirectorFunction::angle  ? tilts[i]
-                          : function == DirectorFunction::sine ? std::sin(tilts[i])
-                                                               : std::tan(tilts[i]));
-        curvatures[i]  = 2. * area2 / edge(x, i).norm() * f;
+        const double f =
+          (function == DirectorFunction::angle     ? tilts[i]
+           : function == DirectorFunction::sine    ? std::sin(tilts[i])
+           : function == DirectorFunction::tangent ? std::tan(tilts[i])
+                                                   : 2. * std::tan(0.5 * tilts[i]));
+        curvatures[i] = 2. * area2 / edge(x, i).norm() * f;
       }
     return curvatures;
   }

@@ -41,8 +41,10 @@ main()
   double       worst_energy = 0., worst_gradient = 0.;
   unsigned int n_crossings = 0; // cases where φ changed branch
 
-  for (const DirectorFunction function :
-       {DirectorFunction::angle, DirectorFunction::sine, DirectorFunction::tangent})
+  for (const DirectorFunction function : {DirectorFunction::angle,
+                                          DirectorFunction::sine,
+                                          DirectorFunction::tangent,
+                                          DirectorFunction::half_tangent})
     for (unsigned int trial = 0; trial < 20; ++trial)
       {
         const BendingMaterial material{1e-3 * (1. + std::abs(uniform(generator))),

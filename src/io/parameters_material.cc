@@ -65,10 +65,12 @@ namespace clothsim
     prm.declare_entry(
       "Director function",
       "angle",
-      Patterns::Selection("angle|sine|tangent"),
-      "f in the edge curvature 2 h f(tilt): 'angle' (f = id), 'sine', or "
-      "'tangent' (a barrier against folding a triangle flat onto its neighbour). "
-      "All three agree for small tilts.");
+      Patterns::Selection("angle|sine|tangent|half tangent"),
+      "f in the edge curvature 2 h f(tilt), tilt in rad: 'angle' (f = id), 'sine', "
+      "'tangent' (f = tan(tilt): a barrier at pi/2, against folding a triangle flat "
+      "onto its neighbour), or 'half tangent' (f = 2 tan(tilt/2): a barrier at pi, "
+      "against a crease turning inside out). All agree for small tilts. With a "
+      "barrier, Newton's line search is capped so that no tilt crosses it.");
     prm.leave_subsection();
   }
 

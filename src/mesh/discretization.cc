@@ -173,6 +173,8 @@ namespace clothsim::mesh
     std::map<types::global_dof_index, unsigned int> slot_of_dof;
     std::set<types::global_dof_index>               unused_set;
     std::vector<types::global_dof_index>            dof_indices(fe->n_dofs_per_cell());
+    VectorType                                      prototype;
+    initialize_ghosted(prototype);
     edge_table.clear();
     unsigned int e = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -205,7 +207,8 @@ namespace clothsim::mesh
               const unsigned int next = (v + 1) % 3, after = (v + 2) % 3;
               const bool forward    = precedes(cell->vertex(next), cell->vertex(after));
               element.angle_dofs[v] = dof_indices[i];
-              element.edge_signs[v] = forward ? 1. : -1.;
+              element.angle_local_dofs[v] = local_index(prototype, dof_indices[i]);
+              element.edge_signs[v]       = forward ? 1. : -1.;
 
               auto [slot, inserted] =
                 slot_of_dof.emplace(dof_indices[i], edge_table.size());
@@ -284,6 +287,16 @@ namespace clothsim::mesh
     const double *local = ghosted_values(ghosted, locally_relevant_dofs.n_elements());
     for (unsigned int i = 0; i < 9; ++i)
       values[i] = local[element.local_dofs[i]];
+  }
+
+
+  std::array<double, 3>
+  Discretization::angles(const VectorType &ghosted, const Element &element) const
+  {
+    const double *local = ghosted_values(ghosted, locally_relevant_dofs.n_elements());
+    return {{local[element.angle_local_dofs[0]],
+             local[element.angle_local_dofs[1]],
+             local[element.angle_local_dofs[2]]}};
   }
 
 

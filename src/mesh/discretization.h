@@ -76,6 +76,7 @@ namespace clothsim
         // With directors, edge i (opposite vertex i): its angle dof, its slot in
         // edges(), the sign s_i = ±1 of its global direction against x_{i+2} - x_{i+1}.
         std::array<types::global_dof_index, 3> angle_dofs;
+        std::array<int, 3>                     angle_local_dofs; // in ghosted vectors
         std::array<unsigned int, 3>            edge_slots;
         std::array<double, 3>                  edge_signs;
         // Whether this rank counts the edge opposite vertex v in sums over the mesh's
@@ -196,6 +197,10 @@ namespace clothsim
       gather(const VectorType      &ghosted,
              const Element         &element,
              std::array<double, 9> &values) const;
+
+      // With directors, the element's edge angles ψ_i (rad) from a ghosted vector.
+      std::array<double, 3>
+      angles(const VectorType &ghosted, const Element &element) const;
 
       // Current vertex positions x = X + u of an element; u_e gets its displacements.
       std::array<Point<3>, 3>

@@ -40,6 +40,11 @@ namespace clothsim::physics
               const double t = std::tan(delta);
               return {t, 1. + t * t, 2. * t * (1. + t * t)};
             }
+            case DirectorFunction::half_tangent: {
+              // f = 2 tan(δ/2), f' = 1 + t², f'' = t (1 + t²) with t = tan(δ/2).
+              const double t = std::tan(0.5 * delta);
+              return {2. * t, 1. + t * t, t * (1. + t * t)};
+            }
         }
       return {0., 0., 0.};
     }
@@ -178,6 +183,76 @@ namespace clothsim::physics
     for (unsigned int i = 0; i < 3; ++i)
       tilt[i] = principal_tilt(tilt[i] + directors.sign[i] * psi[i]);
     return tilt;
+  }
+
+
+  double
+  barrier_tilt(const DirectorFunction function)
+  {
+    switch (function)
+      {
+        case DirectorFunction::tangent:
+          return 0.5 * numbers::PI;
+        case DirectorFunction::half_tangent:
+          return numbers::PI;
+        default:
+          return 0.;
+      }
+  }
+
+
+  double
+  tilt_step_bound(const DirectorFunction             function,
+                  const TrianglePositions           &x,
+                  const std::array<Tensor<1, 3>, 3> &dx,
+                  const EdgeDirectors               &directors,
+                  const EdgeAngles                  &psi,
+                  const EdgeAngles                  &dpsi,
+                  double                             alpha)
+  {
+    const double barrier = barrier_tilt(function);
+    if (barrier == 0.)
+      return alpha;
+    const std::array<double, 3> start    = director_tilts(x, directors, psi);
+    const auto                  tilts_at = [&](const double a) {
+      TrianglePositions x_a;
+      EdgeAngles        psi_a;
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          x_a[i]   = x[i] + a * dx[i];
+          psi_a[i] = psi[i] + a * dpsi[i];
+        }
+      return director_tilts(x_a, directors, psi_a);
+    };
+    // Whether `tilts`, followed from `from` (a change of at most π/2), stay on the
+    // branch.
+    const auto admissible = [&](const std::array<double, 3> &from,
+                                const std::array<double, 3> &tilts,
+                                std::array<double, 3>       &followed) {
+      for (unsigned int i = 0; i < 3; ++i)
+        {
+          const double change = principal_tilt(tilts[i] - from[i]);
+          followed[i]         = from[i] + change;
+          if (std::abs(start[i]) >= barrier)
+            continue;
+          if (std::abs(change) > 0.5 * numbers::PI ||
+              std::abs(followed[i]) >
+                std::abs(start[i]) + 0.9 * (barrier - std::abs(start[i])))
+            return false;
+        }
+      return true;
+    };
+    constexpr unsigned int n_samples = 4;
+    for (unsigned int halvings = 0; halvings <= 30; ++halvings, alpha *= 0.5)
+      {
+        std::array<double, 3> from = start, followed;
+        bool                  ok   = true;
+        for (unsigned int k = 1; k <= n_samples && ok; ++k, from = followed)
+          ok = admissible(from, tilts_at(alpha * k / n_samples), followed);
+        if (ok)
+          return alpha;
+      }
+    return 0.;
   }
 
 

@@ -54,14 +54,23 @@ namespace clothsim::physics
 {
   using namespace dealii;
 
-  // f in II_i = 2 h_i f(δ_i): 'angle' (f = id), 'sine', 'tangent' (a barrier against
-  // folding an element flat onto its neighbour).
+  // f in II_i = 2 h_i f(δ_i): 'angle' (f = id), 'sine', 'tangent' (f = tan δ: a barrier
+  // at |δ| = π/2, against folding an element flat onto its neighbour), 'half tangent'
+  // (f = 2 tan(δ/2) = δ + δ³/12 + ...: a barrier at |δ| = π, against a crease turning
+  // inside out, its two triangles passing through each other).
   enum class DirectorFunction
   {
     angle,
     sine,
-    tangent
+    tangent,
+    half_tangent
   };
+
+  // The tilt at which f has its barrier (π/2 for 'tangent', π for 'half tangent'), or 0
+  // if f has none. Newton's line search must not carry a tilt across it
+  // (tilt_step_bound).
+  double
+  barrier_tilt(const DirectorFunction function);
 
   struct BendingMaterial
   {
@@ -103,6 +112,22 @@ namespace clothsim::physics
   director_tilts(const TrianglePositions &x,
                  const EdgeDirectors     &directors,
                  const EdgeAngles        &psi);
+
+  // The largest α <= `alpha` (halved from it, at most 30 times; 0 if none) for which the
+  // triangle moved from (x, ψ) to (x + α dx, ψ + α dψ) keeps every tilt δ_i on its branch
+  // of f: δ_i, followed continuously from α = 0 through α/4, α/2, 3α/4 to α, changes by
+  // at most π/2 between samples (which rules out a wrap) and stays within 9/10 of the way
+  // to the barrier b: |δ_i| <= |δ_i(0)| + 0.9 (b - |δ_i(0)|) at every sample (not bounded
+  // in between). A tilt already at or past b has no branch to keep and is not checked.
+  // Returns `alpha` for a function without barrier.
+  double
+  tilt_step_bound(const DirectorFunction             function,
+                  const TrianglePositions           &x,
+                  const std::array<Tensor<1, 3>, 3> &dx,
+                  const EdgeDirectors               &directors,
+                  const EdgeAngles                  &psi,
+                  const EdgeAngles                  &dpsi,
+                  double                             alpha);
 
   // Energy W (J) of one triangle.
   double

@@ -98,6 +98,37 @@ namespace clothsim::physics
   }
 
 
+  double
+  BendingTerm::step_cap(const VectorType &u, const VectorType &direction) const
+  {
+    double                alpha = 1.;
+    std::array<double, 9> u_e, du_e;
+    const auto           &elements = discretization.elements();
+    for (unsigned int e = 0; e < elements.size() && alpha > 0.; ++e)
+      {
+        const auto &element = elements[e];
+        discretization.gather(direction, element, du_e);
+        std::array<Tensor<1, 3>, 3> dx;
+        EdgeAngles                  psi, dpsi;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            for (unsigned int c = 0; c < 3; ++c)
+              dx[i][c] = du_e[3 * i + c];
+          }
+        psi   = discretization.angles(u, element);
+        dpsi  = discretization.angles(direction, element);
+        alpha = tilt_step_bound(material.director_function,
+                                discretization.current_positions(element, u, u_e),
+                                dx,
+                                directors(e),
+                                psi,
+                                dpsi,
+                                alpha);
+      }
+    return alpha;
+  }
+
+
   void
   BendingTerm::add_cell_fields(const mesh::Discretization &,
                                const VectorType       &u,
@@ -108,9 +139,7 @@ namespace clothsim::physics
     const auto           &elements = discretization.elements();
     for (unsigned int e = 0; e < elements.size(); ++e)
       {
-        EdgeAngles psi;
-        for (unsigned int i = 0; i < 3; ++i)
-          psi[i] = u(elements[e].angle_dofs[i]);
+        const EdgeAngles psi = discretization.angles(u, elements[e]);
         curvature.values.push_back(
           curvature_change_norm(material,
                                 rest[e],

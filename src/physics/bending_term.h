@@ -5,7 +5,8 @@
 // reference vectors r_E (the director at ψ = 0): they start at the rest directors and,
 // after each converged step, are re-based on the current directors while ψ is set to
 // zero, so the angles stay small. Clamped edges keep ψ = 0 and their rest director.
-// Its projected tangent is the Gauss–Newton part of the Hessian.
+// Its projected tangent is the Gauss–Newton part of the Hessian. A director function with
+// a barrier caps Newton's line search so that no tilt jumps across it.
 
 #include "mesh/discretization.h"
 #include "physics/model.h"
@@ -44,6 +45,16 @@ namespace clothsim::physics
     // the new references they still predict the next step's rotation.)
     void
     commit_step(const VectorType &u, VectorType &u_owned) override;
+
+    // With a barrier in the director function ('tangent', 'half tangent'): no Newton
+    // update may carry a tilt across it (tilt_step_bound on every triangle).
+    bool
+    caps_steps() const override
+    {
+      return barrier_tilt(material.director_function) > 0.;
+    }
+    double
+    step_cap(const VectorType &u, const VectorType &direction) const override;
 
     // curvature_change: |Ā⁻¹(b - B̄)| per triangle, 1/m.
     void

@@ -56,16 +56,8 @@ namespace clothsim::physics
     , n_relevant_dofs(discretization.relevant_dofs().n_elements())
     , timing_overhead(clock_overhead())
   {
-    VectorType prototype;
-    discretization.initialize_ghosted(prototype);
     for (const auto &element : discretization.elements())
-      {
-        rest.push_back(membrane_rest_data(element.reference));
-        if (directors)
-          angle_local_dofs.push_back({{local_index(prototype, element.angle_dofs[0]),
-                                       local_index(prototype, element.angle_dofs[1]),
-                                       local_index(prototype, element.angle_dofs[2])}});
-      }
+      rest.push_back(membrane_rest_data(element.reference));
   }
 
 
@@ -158,8 +150,7 @@ namespace clothsim::physics
         else
           previous_e = u_e;
         if (directors)
-          for (unsigned int i = 0; i < 3; ++i)
-            psi[i] = u(element.angle_dofs[i]);
+          psi = discretization.angles(u, element);
         function(ElementState{
           e, element.reference, rest[e], x, u_e, predictor_e, previous_e, psi});
       }
@@ -242,7 +233,7 @@ namespace clothsim::physics
             gradient_sums.add(element.local_dofs[i], g[i]);
           if (directors)
             for (unsigned int i = 0; i < 3; ++i)
-              gradient_sums.add(angle_local_dofs[state.index][i], g[9 + i]);
+              gradient_sums.add(element.angle_local_dofs[i], g[9 + i]);
         }
       if (hessian != nullptr)
         {
@@ -474,6 +465,26 @@ namespace clothsim::physics
   {
     for (Term *term : all_terms)
       term->commit_step(u, u_owned);
+  }
+
+
+  bool
+  Model::caps_steps() const
+  {
+    return std::any_of(all_terms.begin(), all_terms.end(), [](const Term *term) {
+      return term->caps_steps();
+    });
+  }
+
+
+  double
+  Model::largest_step(const VectorType &u, const VectorType &direction) const
+  {
+    double alpha = 1.;
+    for (const Term *term : all_terms)
+      if (term->caps_steps())
+        alpha = std::min(alpha, term->step_cap(u, direction));
+    return Utilities::MPI::min(alpha, discretization.get_communicator());
   }
 
 

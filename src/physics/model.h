@@ -111,6 +111,13 @@ namespace clothsim::physics
              const VectorType &v,
              RankVector       *damping_force = nullptr) const;
 
+    // Whether a term caps Newton's line search, and the largest step α <= 1 from u along
+    // `direction` (both ghosted) that every term allows. Collective.
+    bool
+    caps_steps() const;
+    double
+    largest_step(const VectorType &u, const VectorType &direction) const;
+
     void
     prepare_step(const VectorType &u_n);
     void
@@ -160,12 +167,10 @@ namespace clothsim::physics
     bool                                      directors = false;
     unsigned int                              n_relevant_dofs; // of ghosted vectors
     std::vector<MembraneRestData>             rest; // per element, for strain and areas
-    // With directors: per element, its angle dofs' local indices in ghosted vectors.
-    std::vector<std::array<int, 3>>    angle_local_dofs;
-    mutable mesh::LocalSums            gradient_sums;   // the cell loop's gradient
-    mutable mesh::ElementMatrixScatter hessian_scatter; // and its Hessian
-    mutable std::vector<double>        seconds;         // per term, see term_seconds()
-    const double                       timing_overhead; // s per sample
+    mutable mesh::LocalSums                   gradient_sums;   // the cell loop's gradient
+    mutable mesh::ElementMatrixScatter        hessian_scatter; // and its Hessian
+    mutable std::vector<double>               seconds; // per term, see term_seconds()
+    const double                              timing_overhead; // s per sample
   };
 
   // Output fields of an element term (membrane stress, curvature change, ...).

@@ -130,6 +130,20 @@ namespace clothsim::physics
     commit_step(const VectorType & /*u*/, VectorType & /*u_owned*/)
     {}
 
+    // Whether the term limits Newton's line search (a barrier whose argument must not
+    // jump across it), and by how much: the largest α <= 1 from u along `direction` (both
+    // ghosted), for this rank's part (Model::largest_step takes the minimum over ranks).
+    virtual bool
+    caps_steps() const
+    {
+      return false;
+    }
+    virtual double
+    step_cap(const VectorType & /*u*/, const VectorType & /*direction*/) const
+    {
+      return 1.;
+    }
+
   private:
     const std::string term_name;
     const TermKind    term_kind;

@@ -140,7 +140,9 @@ namespace clothsim
         const physics::DirectorFunction function =
           material.director_function == "sine"      ? physics::DirectorFunction::sine
           : material.director_function == "tangent" ? physics::DirectorFunction::tangent
-                                                    : physics::DirectorFunction::angle;
+          : material.director_function == "half tangent"
+            ? physics::DirectorFunction::half_tangent
+            : physics::DirectorFunction::angle;
         model->add(std::make_unique<physics::BendingTerm>(
           discretization,
           physics::BendingMaterial{material.bending_rigidity,
@@ -279,8 +281,33 @@ namespace clothsim
   ClothModel::begin_step(const double      t_n,
                          const double      t_new,
                          const VectorType &u_n,
-                         VectorType       &u_new)
+                         VectorType       &u_new,
+                         const double      path_end)
   {
+    if (model->caps_steps())
+      {
+        // The terms' caps (bending tilts) on the straight path from u_n to the step's
+        // end: a prediction that would carry a tilt across its barrier is pulled back
+        // towards u_n.
+        VectorType from, direction;
+        initialize_ghosted(from);
+        initialize_ghosted(direction);
+        from = u_n;
+        VectorType owned_direction(u_new);
+        owned_direction -= u_n;
+        owned_direction *= path_end;
+        direction          = owned_direction;
+        const double alpha = model->largest_step(from, direction);
+        if (alpha < 1.)
+          {
+            const AffineConstraints<double> &constraints =
+              boundary_conditions->constraints();
+            for (const types::global_dof_index i : u_new.locally_owned_elements())
+              if (!constraints.is_constrained(i))
+                u_new[i] = u_n[i] + alpha * (u_new[i] - u_n[i]);
+            u_new.compress(VectorOperation::insert);
+          }
+      }
     if (contact == nullptr)
       return "";
     return contact->begin_step(

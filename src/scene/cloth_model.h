@@ -22,6 +22,7 @@
 #include "scene/boundary_conditions.h"
 #include "time/model_interface.h"
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -185,7 +186,8 @@ namespace clothsim
     begin_step(const double      t_n,
                const double      t_new,
                const VectorType &u_n,
-               VectorType       &u_new) override;
+               VectorType       &u_new,
+               const double      path_end) override;
     bool
     has_contact() const override
     {
@@ -196,12 +198,20 @@ namespace clothsim
     {
       return contact != nullptr ? contact->relag_friction(u) : 0.;
     }
+    bool
+    caps_steps() const override
+    {
+      return contact != nullptr || model->caps_steps();
+    }
     double
     largest_step(const VectorType &u,
                  const VectorType &direction,
                  const double      time) const override
     {
-      return contact != nullptr ? contact->largest_step(u, direction, time) : 1.;
+      const double alpha = model->caps_steps() ? model->largest_step(u, direction) : 1.;
+      return contact != nullptr
+               ? std::min(alpha, contact->largest_step(u, direction, time))
+               : alpha;
     }
     void
     commit_step(const VectorType &u, VectorType &u_owned) override

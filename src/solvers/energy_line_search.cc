@@ -34,8 +34,10 @@ namespace clothsim
     const double noise =
       100. * std::numeric_limits<double>::epsilon() * std::abs(old_value);
 
+    // A cap of zero (an iterate on a barrier's limit) leaves no step: the search fails
+    // at once (accepting a zero step would change nothing until the iteration cap).
     step = std::min(1., cap(old_group.getX(), direction));
-    for (unsigned int cut = 0; cut <= max_halvings; ++cut, step *= 0.5)
+    for (unsigned int cut = 0; cut <= max_halvings && step > 0.; ++cut, step *= 0.5)
       {
         group.computeX(old_group, direction, step);
         const double value = objective(group.getX());

@@ -593,7 +593,7 @@ namespace clothsim
           result.failure = "no convergence in " +
                            std::to_string(parameters.max_iterations) + " iterations";
         else
-          result.failure = "line search found no decrease of the incremental potential";
+          result.failure = "line search found no decrease (within its step cap)";
       }
     return result;
   }

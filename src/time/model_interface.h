@@ -76,14 +76,22 @@ namespace clothsim
     // something): they are then timed ("contact: ...").
     virtual bool
     has_contact() const = 0;
-    // Before each attempt of a step from t_n to t_new, after the prediction: contact
-    // moves Newton's initial guess `u_new` (owned) off the obstacles and lags friction
-    // from u_n (owned). Collective. Returns why no feasible start exists (empty: found).
+    // Whether largest_step can return less than one (contact, or a bending term with a
+    // barrier): the line search then asks it ("line search: step cap" in the timer).
+    virtual bool
+    caps_steps() const = 0;
+    // Before each attempt of a step from t_n to t_new, after the prediction (called if
+    // caps_steps()): contact moves Newton's initial guess `u_new` (owned) off the
+    // obstacles and lags friction from u_n (owned); a bending barrier pulls it back
+    // towards u_n until no tilt on the path from u_n to u_n + path_end (u_new - u_n)
+    // (the step's end: path_end = 2 when Newton solves for the midpoint) crosses it.
+    // Collective. Returns why no feasible start exists (empty: found).
     virtual std::string
     begin_step(const double      t_n,
                const double      t_new,
                const VectorType &u_n,
-               VectorType       &u_new) = 0;
+               VectorType       &u_new,
+               const double      path_end) = 0;
     // Friction solved further: its normal forces and tangent planes taken again at the
     // step's solution u (ghosted); returns their largest relative change (0 without
     // friction). Collective.
@@ -91,7 +99,8 @@ namespace clothsim
     relag_friction(const VectorType &u) = 0;
     // The largest step α <= 1 from u along `direction` (both ghosted) that Newton's
     // line search may take (contact: continuous collision detection against the
-    // obstacles at `time`). Collective.
+    // obstacles at `time`; bending: no tilt across its director function's barrier).
+    // Collective.
     virtual double
     largest_step(const VectorType &u,
                  const VectorType &direction,

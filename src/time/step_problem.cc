@@ -47,12 +47,28 @@ namespace clothsim
   double
   StepProblem::largest_step(const VectorType &u, const VectorType &direction)
   {
-    if (!model.has_contact())
+    if (!model.caps_steps())
       return 1.;
-    TimerOutput::Scope scope(timer, "contact: step cap");
-    ghosted           = u;
-    ghosted_direction = direction;
-    return model.largest_step(ghosted, ghosted_direction, terms.time);
+    TimerOutput::Scope scope(timer, "line search: step cap");
+    if (path_start == nullptr)
+      {
+        ghosted           = u;
+        ghosted_direction = direction;
+        return model.largest_step(ghosted, ghosted_direction, terms.time);
+      }
+    // The averaged potential reads the path's points q_n + c (x - q_n), which move by
+    // c times the update: each must stay admissible, and so must the step's end (c = 2).
+    double alpha = 1.;
+    for (const double c : {gauss_c[0], gauss_c[1], 2.})
+      {
+        set_path_point(u, c);
+        owned_sum = direction; // scratch
+        owned_sum *= c;
+        ghosted_direction = owned_sum;
+        alpha =
+          std::min(alpha, model.largest_step(ghosted, ghosted_direction, terms.time));
+      }
+    return alpha;
   }
 
 

@@ -114,12 +114,14 @@ namespace clothsim
       model.prepare_step(u_ghosted);
     const StepTerms terms = predict_step(time_new, dt, load_factor);
     last_terms            = terms;
-    // Contact: Newton starts off the obstacles (and friction is lagged).
+    // Contact: Newton starts off the obstacles (and friction is lagged); a bending
+    // barrier: with no tilt across it.
     std::string infeasible;
-    if (model.has_contact())
+    if (model.caps_steps())
       {
-        TimerOutput::Scope scope(timer, "contact: feasible start");
-        infeasible = model.begin_step(time_new - dt, time_new, u_n, u_new);
+        TimerOutput::Scope scope(timer, "feasible start");
+        infeasible =
+          model.begin_step(time_new - dt, time_new, u_n, u_new, midpoint ? 2. : 1.);
       }
     if (!infeasible.empty())
       throw SimulationError("contact: " + infeasible +
