@@ -243,8 +243,9 @@ namespace clothsim
     double             interval; // s; 0: every step
     bool               write_vtk;
     std::vector<Probe> probes;
-    std::string        progress;          // "auto", "on", "off"
-    double             drape_disc_radius; // m; 0: no drape coefficient
+    std::string        progress;                    // "auto", "on", "off"
+    double             drape_disc_radius;           // m; 0: no drape coefficient
+    bool               check_intersections = false; // count intersecting triangle pairs
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -60,6 +60,16 @@ namespace clothsim
       "drape_coefficient, DC = (A_projected - π R²)/(A_specimen - π R²) with A_specimen "
       "the cloth's reference area (the Cusick drape test, ISO 9073-9: a specimen on a "
       "disc of radius R). 0: neither.");
+    prm.declare_entry(
+      "Check intersections",
+      "false",
+      Patterns::Bool(),
+      "After every step, count the pairs of the cloth's triangles that share no "
+      "vertex and intersect (touching counts): statistics.csv column "
+      "intersecting_pairs. An independent check that the cloth does not pass "
+      "through itself (physics/self_intersections.h states the tolerance). Costs a "
+      "gather of the mesh on rank 0 and one pass of a bounding-volume hierarchy "
+      "per step.");
     prm.declare_entry("Write VTK",
                       "true",
                       Patterns::Bool(),
@@ -92,9 +102,10 @@ namespace clothsim
   OutputParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Output");
-    interval          = prm.get_double("Output interval");
-    write_vtk         = prm.get_bool("Write VTK");
-    drape_disc_radius = prm.get_double("Drape disc radius");
+    interval            = prm.get_double("Output interval");
+    write_vtk           = prm.get_bool("Write VTK");
+    drape_disc_radius   = prm.get_double("Drape disc radius");
+    check_intersections = prm.get_bool("Check intersections");
     probes.clear();
     for (const auto &[name, X] : parse_named_triples(prm.get("Probes")))
       probes.push_back({name, Point<3>(X), false, {}});

@@ -341,6 +341,8 @@ namespace clothsim
     if (parameters.output.drape_disc_radius > 0.)
       for (const char *column : {"projected_area", "drape_coefficient"})
         columns.push_back(column);
+    if (parameters.output.check_intersections)
+      columns.push_back("intersecting_pairs");
     return columns;
   }
 
@@ -367,9 +369,11 @@ namespace clothsim
   EnergyReport
   ClothModel::add_step_report(const VectorType &u, EnergyReport energies) const
   {
-    // The contact and drape columns are the last ones (energy_columns()).
+    // The contact, drape and intersection columns are the last ones (energy_columns()).
     const double drape_radius = parameters.output.drape_disc_radius;
-    std::size_t  column       = energies.columns.size() - (drape_radius > 0. ? 2 : 0);
+    const bool   intersecting = parameters.output.check_intersections;
+    std::size_t  column =
+      energies.columns.size() - (drape_radius > 0. ? 2 : 0) - (intersecting ? 1 : 0);
     if (contact != nullptr)
       {
         const physics::ObstacleContact::Report contacts =
@@ -383,26 +387,25 @@ namespace clothsim
             energies.columns[column++] = contacts.contacts[o];
           }
       }
+    if (drape_radius == 0. && !intersecting)
+      return energies;
+    // Both measure the whole mesh on rank 0 (0 elsewhere, summed over ranks).
+    const MPI_Comm                           communicator = get_communicator();
+    const std::vector<physics::MeshTriangle> triangles    = triangles_on_root(u);
     if (drape_radius > 0.)
       {
-        // The triangles' current (x, y) from every rank, measured on rank 0.
-        std::vector<double>   corners;
-        std::array<double, 9> u_e;
-        for (const auto &element : discretization.elements())
-          for (const Point<3> &x : discretization.current_positions(element, u, u_e))
-            corners.insert(corners.end(), {x[0], x[1]});
-        const MPI_Comm communicator = get_communicator();
-        const auto     all          = Utilities::MPI::gather(communicator, corners, 0);
-        double         area         = 0.;
+        double area = 0.;
         if (Utilities::MPI::this_mpi_process(communicator) == 0)
           {
-            std::vector<std::array<Point<2>, 3>> triangles;
-            for (const std::vector<double> &part : all)
-              for (std::size_t k = 0; k + 6 <= part.size(); k += 6)
-                triangles.push_back({{Point<2>(part[k], part[k + 1]),
-                                      Point<2>(part[k + 2], part[k + 3]),
-                                      Point<2>(part[k + 4], part[k + 5])}});
-            area = mesh::projected_area(triangles);
+            std::vector<std::array<Point<2>, 3>> shadows;
+            for (const physics::MeshTriangle &triangle : triangles)
+              {
+                std::array<Point<2>, 3> shadow;
+                for (unsigned int v = 0; v < 3; ++v)
+                  shadow[v] = Point<2>(triangle.corners[v][0], triangle.corners[v][1]);
+                shadows.push_back(shadow);
+              }
+            area = mesh::projected_area(shadows);
           }
         area                       = Utilities::MPI::sum(area, communicator);
         const double disc          = numbers::PI * drape_radius * drape_radius;
@@ -410,7 +413,48 @@ namespace clothsim
         energies.columns[column++] =
           (area - disc) / (discretization.reference_area() - disc);
       }
+    if (intersecting)
+      {
+        const double pairs =
+          Utilities::MPI::this_mpi_process(communicator) == 0
+            ? static_cast<double>(physics::intersecting_pairs(triangles).size())
+            : 0.;
+        energies.columns[column++] = Utilities::MPI::sum(pairs, communicator);
+      }
     return energies;
+  }
+
+
+  std::vector<physics::MeshTriangle>
+  ClothModel::triangles_on_root(const VectorType &u) const
+  {
+    // Per triangle: 9 coordinates, then its vertices' ids (their x dofs, exact in a
+    // double below 2^53).
+    std::vector<double>   values;
+    std::array<double, 9> u_e;
+    for (const auto &element : discretization.elements())
+      {
+        for (const Point<3> &x : discretization.current_positions(element, u, u_e))
+          values.insert(values.end(), {x[0], x[1], x[2]});
+        for (unsigned int v = 0; v < 3; ++v)
+          values.push_back(static_cast<double>(element.dofs[3 * v]));
+      }
+    const auto all = Utilities::MPI::gather(get_communicator(), values, 0);
+    std::vector<physics::MeshTriangle> triangles;
+    for (const std::vector<double> &part : all)
+      for (std::size_t k = 0; k + 12 <= part.size(); k += 12)
+        {
+          physics::MeshTriangle triangle;
+          for (unsigned int v = 0; v < 3; ++v)
+            {
+              triangle.corners[v] =
+                Point<3>(part[k + 3 * v], part[k + 3 * v + 1], part[k + 3 * v + 2]);
+              triangle.vertices[v] =
+                static_cast<types::global_dof_index>(part[k + 9 + v]);
+            }
+          triangles.push_back(triangle);
+        }
+    return triangles;
   }
 
 

@@ -18,6 +18,7 @@
 #include "mesh/gmsh_reader.h"
 #include "physics/contact_term.h"
 #include "physics/model.h"
+#include "physics/self_intersections.h"
 #include "physics/spring_network.h"
 #include "scene/boundary_conditions.h"
 #include "time/model_interface.h"
@@ -284,6 +285,10 @@ namespace clothsim
     // columns (if asked for) filled in at u (ghosted).
     EnergyReport
     add_step_report(const VectorType &u, EnergyReport energies) const;
+    // Every triangle of the mesh (current corners, vertex ids) on rank 0; empty on the
+    // other ranks. Collective.
+    std::vector<physics::MeshTriangle>
+    triangles_on_root(const VectorType &u) const;
 
     const Parameters                   &parameters;
     mesh::Discretization                discretization;
