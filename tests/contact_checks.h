@@ -111,6 +111,22 @@ namespace clothsim::test
            (h * h);
   }
 
+  // A sheet on a ball turning at ω about x follows the ball's top, which moves along
+  // -ω y: the centre's displacement that way at 1 s is above 5 cm.
+  inline bool
+  check_follows_top(ConditionalOStream          &pcout,
+                    const std::string           &name,
+                    const std::filesystem::path &directory,
+                    const double                 omega)
+  {
+    const double along = -centre_at(directory, 1.)[1] * (omega > 0. ? 1. : -1.);
+    return check_above(pcout,
+                       name +
+                         ": the centre's displacement along the top's motion at 1 s, m",
+                       along,
+                       0.05);
+  }
+
   // Every row of the run's statistics.csv has the cloth apart from every obstacle.
   inline bool
   check_outside(ConditionalOStream          &pcout,

@@ -253,14 +253,7 @@ namespace
                       result);
         if (!result.files_read)
           continue;
-        // The sheet follows the ball's top, which moves along -ω y.
-        const double along = -centre_at(root / name, 1.)[1] * (omega > 0. ? 1. : -1.);
-        passed &=
-          check_above(pcout,
-                      name +
-                        ": the centre's displacement along the top's motion at 1 s, m",
-                      along,
-                      0.05);
+        passed &= check_follows_top(pcout, name, root / name, omega);
       }
     return passed;
   }
