@@ -197,8 +197,9 @@ namespace clothsim
     unsigned int max_iterations;
     double       absolute_tolerance; // N
     double       relative_tolerance;
-    std::string  line_search;               // "polynomial", "backtrack", "full step"
-    std::string  tangent;                   // "adaptive", "projected", "exact"
+    std::string  line_search;          // "polynomial", "backtrack", "full step"
+    std::string  tangent;              // "adaptive", "projected", "exact"
+    bool         mixed_stress_tangent; // membrane stress linearised (physics/membrane.h)
     double       displacement_tolerance;    // m
     double       truncation_error_fraction; // of the step's local error estimate
     bool         print_iterations;

@@ -125,7 +125,8 @@ namespace clothsim::physics
                                    const TrianglePositions &current,
                                    const double             stress_floor,
                                    ElementVector           &gradient,
-                                   ElementMatrix           *hessian)
+                                   ElementMatrix           *hessian,
+                                   const TrianglePositions *linearised_from)
   {
     const Coefficients  c     = coefficients(material);
     const Tensor<2, 2> &Q     = rest.inverse_metric;
@@ -146,8 +147,20 @@ namespace clothsim::physics
 
     if (hessian != nullptr)
       {
+        // The stress of the geometric part: at x, or of the strain linearised from x_p,
+        // a - Δa ⊗ Δa in the metric.
+        Tensor<2, 2> S = s.stress;
+        if (linearised_from != nullptr)
+          {
+            const EdgeBasis from   = edge_basis(*linearised_from);
+            Tensor<2, 2>    metric = basis.metric;
+            for (unsigned int a = 0; a < 2; ++a)
+              for (unsigned int b = 0; b < 2; ++b)
+                metric[a][b] -= (basis.a[a] - from.a[a]) * (basis.a[b] - from.a[b]);
+            S = strain_state(c, rest, metric).stress;
+          }
         const Tensor<2, 2> S_geo =
-          std::isinf(stress_floor) ? s.stress : clamp_below(s.stress, -stress_floor);
+          std::isinf(stress_floor) ? S : clamp_below(S, -stress_floor);
 
         // Blocks H_ac = d²W/da_a da_c (3x3) for a, c in {1, 2}.
         Tensor<2, 3> H[2][2];

@@ -28,6 +28,13 @@
 // clamping at -s_min = -m_min / (3 |T̄|) keeps geometric + m_min I positive semi-definite:
 // a time step's mass term pays for the compression, and Newton stays exact wherever it
 // can (see ClothModel).
+// Mixed-stress tangent (the "mixed integration point" Newton of Magisano, Leonetti &
+// Garcea, Int. J. Numer. Meth. Eng. 109, 2017): Newton on the mixed form (x, S) with S
+// eliminated per element takes the residual at x but the geometric stiffness from the
+// stress of the strain linearised from the previous linearisation point x_p,
+//   E_lin = E(x) - ½ Δa_a·Δa_b,   Δa = a(x) - a(x_p)   (E is quadratic in a).
+// A stiff membrane turning within an iteration no longer stiffens the tangent with the
+// spurious stretch of the linearised rotation, and Newton needs fewer iterations.
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -70,14 +77,16 @@ namespace clothsim::physics
   // Energy, gradient dW/dx (N, ordered x0.x, x0.y, x0.z, x1.x, ...) and Hessian d²W/dx²
   // (N/m). `hessian` may be null when only the gradient is needed. The Hessian's
   // geometric part uses S with eigenvalues clamped below at -stress_floor (N/m; infinity:
-  // exact Hessian).
+  // exact Hessian); with `linearised_from` (x_p), the S of the strain linearised from
+  // there (the mixed-stress tangent above; x_p = current: the Hessian).
   double
   membrane_energy_gradient_hessian(const MembraneMaterial  &material,
                                    const MembraneRestData  &rest,
                                    const TrianglePositions &current,
                                    const double             stress_floor,
                                    ElementVector           &gradient,
-                                   ElementMatrix           *hessian);
+                                   ElementMatrix           *hessian,
+                                   const TrianglePositions *linearised_from = nullptr);
 
   // Strain and stress measures of one triangle for output.
   struct MembraneStrainStress

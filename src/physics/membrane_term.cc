@@ -37,8 +37,13 @@ namespace clothsim::physics
                                    : std::numeric_limits<double>::infinity();
     ElementVector g;
     ElementMatrix H;
-    value += membrane_energy_gradient_hessian(
-      material, rest, element.x, stress_floor, g, hessian != nullptr ? &H : nullptr);
+    value += membrane_energy_gradient_hessian(material,
+                                              rest,
+                                              element.x,
+                                              stress_floor,
+                                              g,
+                                              hessian != nullptr ? &H : nullptr,
+                                              element.linearised_from);
     for (unsigned int i = 0; i < 9; ++i)
       {
         if (gradient != nullptr)

@@ -132,9 +132,11 @@ namespace clothsim::physics
   Model::for_each_element(const VectorType &u,
                           const VectorType *predictor,
                           const VectorType *previous,
-                          const Function   &function) const
+                          const Function   &function,
+                          const VectorType *linearised_from) const
   {
-    std::array<double, 9> u_e, predictor_e, previous_e;
+    std::array<double, 9> u_e, predictor_e, previous_e, from_e;
+    TrianglePositions     from_x;
     EdgeAngles            psi      = {{0., 0., 0.}};
     const auto           &elements = discretization.elements();
     for (unsigned int e = 0; e < elements.size(); ++e)
@@ -151,8 +153,17 @@ namespace clothsim::physics
           previous_e = u_e;
         if (directors)
           psi = discretization.angles(u, element);
-        function(ElementState{
-          e, element.reference, rest[e], x, u_e, predictor_e, previous_e, psi});
+        if (linearised_from != nullptr)
+          from_x = discretization.current_positions(element, *linearised_from, from_e);
+        function(ElementState{e,
+                              element.reference,
+                              rest[e],
+                              x,
+                              u_e,
+                              predictor_e,
+                              previous_e,
+                              psi,
+                              linearised_from != nullptr ? &from_x : nullptr});
       }
   }
 
@@ -188,62 +199,67 @@ namespace clothsim::physics
     std::vector<types::global_dof_index> dof_vector(n_local);
     double                               value    = 0.;
     const auto                          &elements = discretization.elements();
-    for_each_element(u, predictor, previous, [&](const ElementState &state) {
-      g.fill(0.);
-      if (hessian != nullptr)
-        for (auto &row : H)
-          row.fill(0.);
-      const auto &element = elements[state.index];
-      const bool  timed   = state.index % timing_stride == 0;
-      for (unsigned int k = 0; k < element_terms.size(); ++k)
-        {
-          const Clock::time_point start = timed ? Clock::now() : Clock::time_point();
-          if (dissipative_gradient != nullptr &&
-              element_terms[k]->kind() == TermKind::dissipative)
-            {
-              // Its part kept apart too (on the displacement dofs: damping has no
-              // angle part).
-              g_dissipative.fill(0.);
-              element_terms[k]->add_to_step(
-                state, step, value, &g_dissipative, hessian != nullptr ? &H : nullptr);
-              for (unsigned int i = 0; i < n_local; ++i)
-                g[i] += g_dissipative[i];
-              for (unsigned int i = 0; i < 9; ++i)
-                (*dissipative_gradient)[element.local_dofs[i]] += g_dissipative[i];
-            }
-          else
-            element_terms[k]->add_to_step(state,
-                                          step,
-                                          value,
-                                          gradient != nullptr ? &g : nullptr,
-                                          hessian != nullptr ? &H : nullptr);
-          if (timed)
-            seconds[k] +=
-              timing_stride * std::max(seconds_since(start) - timing_overhead, 0.);
-        }
+    for_each_element(
+      u,
+      predictor,
+      previous,
+      [&](const ElementState &state) {
+        g.fill(0.);
+        if (hessian != nullptr)
+          for (auto &row : H)
+            row.fill(0.);
+        const auto &element = elements[state.index];
+        const bool  timed   = state.index % timing_stride == 0;
+        for (unsigned int k = 0; k < element_terms.size(); ++k)
+          {
+            const Clock::time_point start = timed ? Clock::now() : Clock::time_point();
+            if (dissipative_gradient != nullptr &&
+                element_terms[k]->kind() == TermKind::dissipative)
+              {
+                // Its part kept apart too (on the displacement dofs: damping has no
+                // angle part).
+                g_dissipative.fill(0.);
+                element_terms[k]->add_to_step(
+                  state, step, value, &g_dissipative, hessian != nullptr ? &H : nullptr);
+                for (unsigned int i = 0; i < n_local; ++i)
+                  g[i] += g_dissipative[i];
+                for (unsigned int i = 0; i < 9; ++i)
+                  (*dissipative_gradient)[element.local_dofs[i]] += g_dissipative[i];
+              }
+            else
+              element_terms[k]->add_to_step(state,
+                                            step,
+                                            value,
+                                            gradient != nullptr ? &g : nullptr,
+                                            hessian != nullptr ? &H : nullptr);
+            if (timed)
+              seconds[k] +=
+                timing_stride * std::max(seconds_since(start) - timing_overhead, 0.);
+          }
 
-      std::copy(element.dofs.begin(), element.dofs.end(), dof_vector.begin());
-      if (directors)
-        std::copy(element.angle_dofs.begin(),
-                  element.angle_dofs.end(),
-                  dof_vector.begin() + 9);
-      if (gradient != nullptr)
-        {
-          for (unsigned int i = 0; i < 9; ++i)
-            gradient_sums.add(element.local_dofs[i], g[i]);
-          if (directors)
-            for (unsigned int i = 0; i < 3; ++i)
-              gradient_sums.add(element.angle_local_dofs[i], g[9 + i]);
-        }
-      if (hessian != nullptr)
-        {
-          for (unsigned int i = 0; i < n_local; ++i)
-            for (unsigned int j = 0; j < n_local; ++j)
-              cell_matrix(i, j) = H[i][j];
-          if (!hessian_scatter.add(state.index, dof_vector, cell_matrix, constraints))
-            constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
-        }
-    });
+        std::copy(element.dofs.begin(), element.dofs.end(), dof_vector.begin());
+        if (directors)
+          std::copy(element.angle_dofs.begin(),
+                    element.angle_dofs.end(),
+                    dof_vector.begin() + 9);
+        if (gradient != nullptr)
+          {
+            for (unsigned int i = 0; i < 9; ++i)
+              gradient_sums.add(element.local_dofs[i], g[i]);
+            if (directors)
+              for (unsigned int i = 0; i < 3; ++i)
+                gradient_sums.add(element.angle_local_dofs[i], g[9 + i]);
+          }
+        if (hessian != nullptr)
+          {
+            for (unsigned int i = 0; i < n_local; ++i)
+              for (unsigned int j = 0; j < n_local; ++j)
+                cell_matrix(i, j) = H[i][j];
+            if (!hessian_scatter.add(state.index, dof_vector, cell_matrix, constraints))
+              constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
+          }
+      },
+      hessian != nullptr ? step.linearised_from : nullptr);
 
     if (gradient != nullptr)
       gradient_sums.add_to(*gradient, constraints);

@@ -150,13 +150,15 @@ namespace clothsim::physics
 
   private:
     // Calls function(element state) for every locally owned triangle, with û and u_n
-    // gathered only if given (else equal to u) and the angles only with directors.
+    // gathered only if given (else equal to u), the angles only with directors and the
+    // positions at `linearised_from` only if given.
     template <class Function>
     void
     for_each_element(const VectorType &u,
                      const VectorType *predictor,
                      const VectorType *previous,
-                     const Function   &function) const;
+                     const Function   &function,
+                     const VectorType *linearised_from = nullptr) const;
 
     const mesh::Discretization               &discretization;
     const AffineConstraints<double>          &constraints;

@@ -39,6 +39,10 @@ namespace clothsim
     const VectorType *predictor         = nullptr; // û (ghosted); needed if w_i > 0
     const VectorType *previous          = nullptr; // u_n (ghosted); needed if w_d > 0
     bool              projected_tangent = true;    // Hessian: projected (PSD) or exact
+    // With the mixed-stress tangent (physics/membrane.h): the state (ghosted) from which
+    // the membrane's strain is linearised for the tangent's geometric stiffness; null:
+    // the stress at u.
+    const VectorType *linearised_from = nullptr;
     // The time of the state solved for (s; the load factor in static steps): where
     // moving obstacles are.
     double time = 0.;
@@ -85,6 +89,8 @@ namespace clothsim::physics
     const std::array<double, 9> &previous;
     // With directors: the element's edge angles ψ, rad (else unset).
     const EdgeAngles &psi;
+    // Positions at StepTerms::linearised_from when a tangent is assembled, else null.
+    const TrianglePositions *linearised_from = nullptr;
   };
 
   class Term

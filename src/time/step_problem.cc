@@ -36,6 +36,42 @@ namespace clothsim
 
 
   void
+  StepProblem::linearise_stress_from(const VectorType &start)
+  {
+    tangent_points.assign(path_start == nullptr ? 1 : 2, start);
+    earlier_tangent_points = tangent_points;
+    model.initialize_ghosted(linearised_from);
+    model.initialize_owned(scratch);
+  }
+
+
+  void
+  StepProblem::assemble_tangent(const unsigned int node,
+                                const VectorType  &x,
+                                MatrixType        &J)
+  {
+    if (tangent_points.empty())
+      {
+        model.assemble(ghosted, terms, nullptr, &J);
+        return;
+      }
+    // A second tangent at the same point (the adaptive tangent's projected retry)
+    // linearises from the same point as the first.
+    scratch = x;
+    scratch -= tangent_points[node];
+    if (scratch.linfty_norm() != 0.)
+      {
+        earlier_tangent_points[node] = tangent_points[node];
+        tangent_points[node]         = x;
+      }
+    linearised_from       = earlier_tangent_points[node];
+    terms.linearised_from = &linearised_from;
+    model.assemble(ghosted, terms, nullptr, &J);
+    terms.linearised_from = nullptr;
+  }
+
+
+  void
   StepProblem::set_path_point(const VectorType &x, const double c)
   {
     owned_point = x;
@@ -119,7 +155,7 @@ namespace clothsim
     if (path_start == nullptr)
       {
         ghosted = u;
-        model.assemble(ghosted, terms, nullptr, &J);
+        assemble_tangent(0, u, J);
         return;
       }
     // Σ w c ∇²Φ(q_n + c (x - q_n)); each node's projected Hessian is positive
@@ -128,10 +164,10 @@ namespace clothsim
     // found in J's value arrays); the first is parked in a copy of the same sparsity
     // (a deep copy only the first time).
     set_path_point(u, gauss_c[0]);
-    model.assemble(ghosted, terms, nullptr, &J);
+    assemble_tangent(0, owned_point, J);
     first_tangent->copy_from(J);
     set_path_point(u, gauss_c[1]);
-    model.assemble(ghosted, terms, nullptr, &J);
+    assemble_tangent(1, owned_point, J);
     J *= gauss_weight * gauss_c[1];
     J.add(gauss_weight * gauss_c[0], *first_tangent);
   }

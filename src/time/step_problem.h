@@ -37,6 +37,13 @@ namespace clothsim
     void
     average_along_path_from(const VectorType &start, MatrixType &scratch);
 
+    // From now on every tangent takes the membrane's geometric stiffness from the strain
+    // linearised from the point of the tangent before (physics/membrane.h, mixed-stress
+    // tangent), the first from `start` (owned: the step's start u_n, where the AVF path's
+    // points all begin too).
+    void
+    linearise_stress_from(const VectorType &start);
+
     double
     objective(const VectorType &u) override;
 
@@ -68,6 +75,11 @@ namespace clothsim
     }
 
   private:
+    // The tangent at `ghosted` (= x, owned), the evaluation point `node` (0, or the
+    // AVF's 0 and 1).
+    void
+    assemble_tangent(unsigned int node, const VectorType &x, MatrixType &J);
+
     // ghosted = q_n + c (x - q_n), the path's point at the quadrature node's c = 2s.
     void
     set_path_point(const VectorType &x, const double c);
@@ -77,8 +89,12 @@ namespace clothsim
     StepTerms                                 terms;
     TimerOutput                              &timer;
     VectorType                                ghosted, ghosted_direction;
-    const VectorType *path_start = nullptr;    // q_n (owned) of the AVF step, else null
-    VectorType        owned_point, owned_sum;  // owned work vectors of the AVF step
-    MatrixType       *first_tangent = nullptr; // the AVF tangent at the first node
+    const VectorType *path_start = nullptr; // q_n (owned) of the AVF step, else null
+    // Mixed-stress tangent: per evaluation point (the AVF's two nodes, else one) the
+    // point of the last tangent and of the one before (owned; empty: off).
+    std::vector<VectorType> tangent_points, earlier_tangent_points;
+    VectorType              linearised_from, scratch; // ghosted, owned
+    VectorType              owned_point, owned_sum;  // owned work vectors of the AVF step
+    MatrixType             *first_tangent = nullptr; // the AVF tangent at the first node
   };
 } // namespace clothsim

@@ -137,6 +137,8 @@ namespace clothsim
     StepProblem problem(model, terms, timer);
     if (parameters.time.integrator == Integrator::average_vector_field)
       problem.average_along_path_from(u_n, path_tangent);
+    if (parameters.nonlinear_solver.mixed_stress_tangent)
+      problem.linearise_stress_from(u_n);
     if (terms.inertia_weight != tangent_weights.first ||
         terms.damping_weight != tangent_weights.second)
       newton.invalidate_tangent(/*rescaled=*/true);
