@@ -289,14 +289,17 @@ namespace clothsim
                            "explicit integrators need 'Material/Mass = lumped'");
       }
     const Integrator integrator = parameters.time.integrator;
-    if (!parameters.contact.obstacles.empty() &&
+    if ((!parameters.contact.obstacles.empty() || parameters.contact.self_contact) &&
         integrator != Integrator::backward_euler && integrator != Integrator::bdf2 &&
         integrator != Integrator::static_load_steps)
       throw InputError(file,
                        "Time/Integrator",
-                       "contact with obstacles needs 'backward euler', 'bdf2' or 'static "
-                       "load steps' (the barrier holds the state solved for, which the "
-                       "midpoint rules and the explicit integrators do not end on)");
+                       std::string(parameters.contact.obstacles.empty()
+                                     ? "self-contact"
+                                     : "contact with obstacles") +
+                         " needs 'backward euler', 'bdf2' or 'static "
+                         "load steps' (the barrier holds the state solved for, which the "
+                         "midpoint rules and the explicit integrators do not end on)");
     if (mass_spring && !parameters.material.lumped_mass)
       throw InputError(file,
                        "Material/Mass",

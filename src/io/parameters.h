@@ -281,6 +281,7 @@ namespace clothsim
     double                          barrier_acceleration; // a_b, m/s²
     double                          slip_velocity;        // ε_v, m/s
     unsigned int                    friction_updates;     // solves per step
+    bool                            self_contact;         // the cloth with itself
     std::vector<ObstacleParameters> obstacles;            // the sections in use
 
     static void

@@ -52,6 +52,14 @@ namespace clothsim
       "step's start (IPC). k > 1: after each converged solve they are taken "
       "again at the solution and the step is solved again, until they "
       "change by less than 0.1 % of the largest or after k solves.");
+    prm.declare_entry(
+      "Self contact",
+      "false",
+      Patterns::Bool(),
+      "The cloth against itself: every vertex-triangle and edge-edge pair that "
+      "shares no vertex pays the same barrier within 'Thickness', and the line "
+      "search never lets the cloth pass through itself. 'Thickness' must be below "
+      "the smallest such distance at rest (checked). One MPI rank only.");
     prm.leave_subsection();
 
     for (unsigned int k = 0; k < max_obstacles; ++k)
@@ -138,6 +146,7 @@ namespace clothsim
     barrier_acceleration = prm.get_double("Barrier stiffness");
     slip_velocity        = prm.get_double("Static friction velocity");
     friction_updates     = prm.get_integer("Friction updates");
+    self_contact         = prm.get_bool("Self contact");
     prm.leave_subsection();
 
     obstacles.clear();

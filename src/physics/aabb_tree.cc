@@ -1,6 +1,9 @@
 #include "physics/aabb_tree.h"
 
+#include <deal.II/base/exceptions.h>
+
 #include <algorithm>
+#include <array>
 #include <numeric>
 
 namespace clothsim::physics
@@ -61,15 +64,39 @@ namespace clothsim::physics
 
 
   void
+  AabbTree::refit(const std::vector<Box> &new_boxes)
+  {
+    AssertDimension(new_boxes.size(), boxes.size());
+    boxes = new_boxes;
+    // Children come after their parent in `nodes` (built depth-first).
+    for (unsigned int n = nodes.size(); n-- > 0;)
+      {
+        Node &node = nodes[n];
+        if (node.count > 0)
+          {
+            node.box = boxes[order[node.first]];
+            for (unsigned int k = node.first + 1; k < node.first + node.count; ++k)
+              node.box = node.box.merged(boxes[order[k]]);
+          }
+        else
+          node.box = nodes[node.left].box.merged(nodes[node.right].box);
+      }
+  }
+
+
+  void
   AabbTree::find(const Box &query, std::vector<unsigned int> &found) const
   {
     if (nodes.empty())
       return;
-    std::vector<unsigned int> stack = {0};
-    while (!stack.empty())
+    // Depth-first; the stack holds at most one node per level plus one (median splits
+    // keep the depth at log2 of the size), so no allocation per query.
+    std::array<unsigned int, 128> stack;
+    unsigned int                  size = 0;
+    stack[size++]                      = 0;
+    while (size > 0)
       {
-        const Node &node = nodes[stack.back()];
-        stack.pop_back();
+        const Node &node = nodes[stack[--size]];
         if (!node.box.overlaps(query))
           continue;
         if (node.count > 0)
@@ -80,8 +107,9 @@ namespace clothsim::physics
           }
         else
           {
-            stack.push_back(node.left);
-            stack.push_back(node.right);
+            Assert(size + 2 <= stack.size(), ExcInternalError());
+            stack[size++] = node.left;
+            stack[size++] = node.right;
           }
       }
   }

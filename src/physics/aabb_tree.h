@@ -52,6 +52,19 @@ namespace clothsim::physics
       return std::sqrt(sum);
     }
 
+    // The smallest box around both.
+    Box
+    merged(const Box &other) const
+    {
+      Box box = *this;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          box.lower[d] = std::min(lower[d], other.lower[d]);
+          box.upper[d] = std::max(upper[d], other.upper[d]);
+        }
+      return box;
+    }
+
     bool
     overlaps(const Box &other) const
     {
@@ -67,6 +80,12 @@ namespace clothsim::physics
   public:
     AabbTree() = default;
     explicit AabbTree(const std::vector<Box> &boxes);
+
+    // New boxes (as many, in the same order) in the same hierarchy: each node's box is
+    // made again from its children's, O(n). The splits stay those of the first boxes, so
+    // queries slow down (never err) as the boxes move away from them.
+    void
+    refit(const std::vector<Box> &new_boxes);
 
     // Appends to `found` the index of every box that overlaps `query`.
     void

@@ -21,57 +21,11 @@ namespace clothsim::physics
     : obstacles(obstacles)
     , communicator(discretization.get_communicator())
     , settings(settings)
+    , cloth(discretization, lumped_masses)
   {
     for (unsigned int o = 0; o < obstacles.size(); ++o)
       if (obstacles[o].shape().core == ObstacleCore::mesh)
         mesh_obstacles.push_back(o);
-    if (mesh_obstacles.empty())
-      return;
-
-    VectorType masses;
-    discretization.initialize_ghosted(masses);
-    masses = lumped_masses;
-    std::map<types::global_dof_index, unsigned int> point_of_dof;
-    for (const auto &element : discretization.elements())
-      {
-        std::array<unsigned int, 3> triangle;
-        for (unsigned int v = 0; v < 3; ++v)
-          {
-            const auto [slot, inserted] =
-              point_of_dof.emplace(element.dofs[3 * v], points.size());
-            triangle[v] = slot->second;
-            if (!inserted)
-              continue;
-            ClothPoint point;
-            for (unsigned int c = 0; c < 3; ++c)
-              {
-                point.dofs[c]  = element.dofs[3 * v + c];
-                point.local[c] = element.local_dofs[3 * v + c];
-              }
-            point.reference = element.reference[v];
-            point.mass      = masses[element.dofs[3 * v]];
-            point.owned     = discretization.owned_dofs().is_element(element.dofs[3 * v]);
-            points.push_back(point);
-          }
-        triangles.push_back(triangle);
-        for (unsigned int v = 0; v < 3; ++v)
-          if (element.counts_edge[v])
-            {
-              const unsigned int a = triangle[(v + 1) % 3], b = triangle[(v + 2) % 3];
-              edges.push_back({{a, b}});
-              edge_length.push_back(points[a].reference.distance(points[b].reference));
-            }
-      }
-  }
-
-
-  Point<3>
-  MeshContact::position(const unsigned int point, const double *u_local) const
-  {
-    Point<3> x = points[point].reference;
-    for (unsigned int c = 0; c < 3; ++c)
-      x[c] += u_local[points[point].local[c]];
-    return x;
   }
 
 
@@ -83,7 +37,7 @@ namespace clothsim::physics
     const ObstacleSurface &surface = *obstacles[pair.obstacle].shape().surface;
     PairPoints             x;
     for (unsigned int i = 0; i < 4; ++i)
-      x[i] = pair.moving[i] ? position(pair.index[i], u_local)
+      x[i] = pair.moving[i] ? cloth.position(pair.index[i], u_local)
                             : pose.to_world(surface.vertices[pair.index[i]]);
     return x;
   }
@@ -101,17 +55,17 @@ namespace clothsim::physics
     // The box around cloth points (at u and u + step) in the body frame of `pose`.
     std::vector<Point<3>> corners;
     const auto            box_of = [&](const RigidPose                          &pose,
-                            const std::initializer_list<unsigned int> cloth) {
+                            const std::initializer_list<unsigned int> primitive) {
       corners.clear();
-      for (const unsigned int p : cloth)
+      for (const unsigned int p : primitive)
         {
-          const Point<3> x = position(p, u_local);
+          const Point<3> x = cloth.position(p, u_local);
           corners.push_back(pose.to_body(x));
           if (step_local != nullptr)
             {
               Tensor<1, 3> dx;
               for (unsigned int c = 0; c < 3; ++c)
-                dx[c] = step_local[points[p].local[c]];
+                dx[c] = step_local[cloth.vertices[p].local[c]];
               corners.push_back(pose.to_body(x + dx));
             }
         }
@@ -132,13 +86,13 @@ namespace clothsim::physics
         pair.kind      = PairKind::point_triangle;
         pair.moving    = {{true, false, false, false}};
         pair.threshold = 0.;
-        for (unsigned int p = 0; p < points.size(); ++p)
+        for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
           {
-            if (!points[p].owned)
+            if (!cloth.vertices[p].owned)
               continue;
             found.clear();
             surface.triangle_tree.find(box_of(pose, {p}), found);
-            pair.kappa = points[p].mass * a_per_d;
+            pair.kappa = cloth.vertices[p].mass * a_per_d;
             for (const unsigned int t : found)
               {
                 const auto &triangle = surface.triangles[t];
@@ -153,12 +107,13 @@ namespace clothsim::physics
         // Cloth edges against the obstacle's edges.
         pair.kind   = PairKind::edge_edge;
         pair.moving = {{true, true, false, false}};
-        for (unsigned int e = 0; e < edges.size(); ++e)
+        for (unsigned int e = 0; e < cloth.edges.size(); ++e)
           {
-            const auto [a, b] = edges[e];
+            const auto [a, b] = cloth.edges[e];
             found.clear();
             surface.edge_tree.find(box_of(pose, {a, b}), found);
-            pair.kappa = 0.5 * (points[a].mass + points[b].mass) * a_per_d;
+            pair.kappa =
+              0.5 * (cloth.vertices[a].mass + cloth.vertices[b].mass) * a_per_d;
             for (const unsigned int k : found)
               {
                 const auto &edge = surface.edges[k];
@@ -166,7 +121,7 @@ namespace clothsim::physics
                                      static_cast<int>(b),
                                      static_cast<int>(edge[0]),
                                      static_cast<int>(edge[1])}};
-                pair.threshold   = mollifier_threshold(edge_length[e],
+                pair.threshold   = mollifier_threshold(cloth.edge_length[e],
                                                      surface.vertices[edge[0]].distance(
                                                        surface.vertices[edge[1]]));
                 visit(pair);
@@ -177,15 +132,16 @@ namespace clothsim::physics
         pair.kind      = PairKind::point_triangle;
         pair.moving    = {{false, true, true, true}};
         pair.threshold = 0.;
-        for (const auto &triangle : triangles)
+        for (const auto &triangle : cloth.triangles)
           {
             found.clear();
             surface.vertex_tree.find(box_of(pose,
                                             {triangle[0], triangle[1], triangle[2]}),
                                      found);
-            pair.kappa = (points[triangle[0]].mass + points[triangle[1]].mass +
-                          points[triangle[2]].mass) /
-                         3. * a_per_d;
+            pair.kappa =
+              (cloth.vertices[triangle[0]].mass + cloth.vertices[triangle[1]].mass +
+               cloth.vertices[triangle[2]].mass) /
+              3. * a_per_d;
             for (const unsigned int v : found)
               {
                 pair.index = {{static_cast<int>(v),
@@ -226,7 +182,7 @@ namespace clothsim::physics
       for (unsigned int i = 0; i < 4; ++i)
         if (pair.moving[i])
           for (unsigned int c = 0; c < 3; ++c)
-            dofs.push_back(points[pair.index[i]].dofs[c]);
+            dofs.push_back(cloth.vertices[pair.index[i]].dofs[c]);
       for (unsigned int i = 0; i < b.n; ++i)
         {
           g[i] = b.gradient[i];
@@ -262,7 +218,7 @@ namespace clothsim::physics
         for (unsigned int i = 0; i < 4; ++i)
           if (pair.moving[i])
             for (unsigned int c = 0; c < 3; ++c)
-              dx[i][c] = step_local[points[pair.index[i]].local[c]];
+              dx[i][c] = step_local[cloth.vertices[pair.index[i]].local[c]];
         alpha = std::min(alpha, pair_step_bound(pair.kind, x, dx, fraction));
       },
       only);
@@ -294,10 +250,10 @@ namespace clothsim::physics
     for (const unsigned int o : mesh_obstacles)
       {
         const ObstacleSurface &surface = *obstacles[o].shape().surface;
-        for (unsigned int p = 0; p < points.size(); ++p)
-          if (points[p].owned)
+        for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
+          if (cloth.vertices[p].owned)
             {
-              const Point<3> y     = poses[o].to_body(position(p, u_local));
+              const Point<3> y     = poses[o].to_body(cloth.position(p, u_local));
               const auto     lower = [&y](const Box &box) { return box.distance(y); };
               const auto     exact = [&](const unsigned int t) {
                 const auto &v = surface.vertices;
@@ -342,10 +298,11 @@ namespace clothsim::physics
         const ObstacleSurface &surface = *obstacles[o].shape().surface;
         const auto            &v       = surface.vertices;
         const std::string      name    = "obstacle '" + obstacles[o].name() + "'";
-        for (const auto &[a, b] : edges)
+        for (const auto &[a, b] : cloth.edges)
           {
-            const std::array<Point<3>, 2> y = {{poses[o].to_body(position(a, u_local)),
-                                                poses[o].to_body(position(b, u_local))}};
+            const std::array<Point<3>, 2> y = {
+              {poses[o].to_body(cloth.position(a, u_local)),
+               poses[o].to_body(cloth.position(b, u_local))}};
             hits.clear();
             surface.triangle_tree.find(Box::around(y), hits);
             for (const unsigned int k : hits)
@@ -353,15 +310,15 @@ namespace clothsim::physics
                 const auto &t = surface.triangles[k];
                 if (found.empty() &&
                     segment_crosses_triangle(y[0], y[1], v[t[0]], v[t[1]], v[t[2]]))
-                  found = "the cloth edge at " + describe(position(a, u_local)) +
+                  found = "the cloth edge at " + describe(cloth.position(a, u_local)) +
                           " passes through " + name;
               }
           }
-        for (const auto &triangle : triangles)
+        for (const auto &triangle : cloth.triangles)
           {
             std::array<Point<3>, 3> y;
             for (unsigned int i = 0; i < 3; ++i)
-              y[i] = poses[o].to_body(position(triangle[i], u_local));
+              y[i] = poses[o].to_body(cloth.position(triangle[i], u_local));
             hits.clear();
             surface.edge_tree.find(Box::around(y), hits);
             for (const unsigned int k : hits)
@@ -371,7 +328,7 @@ namespace clothsim::physics
                     segment_crosses_triangle(v[e[0]], v[e[1]], y[0], y[1], y[2]))
                   found = "an edge of " + name +
                           " passes through the cloth triangle at " +
-                          describe(position(triangle[0], u_local));
+                          describe(cloth.position(triangle[0], u_local));
               }
           }
       }
@@ -385,11 +342,11 @@ namespace clothsim::physics
                              const RigidPose           &to) const
   {
     std::vector<double> result(state);
-    for (unsigned int p = 0; p < points.size(); ++p)
+    for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
       {
-        const Point<3> x = to.to_world(from.to_body(position(p, state.data())));
+        const Point<3> x = to.to_world(from.to_body(cloth.position(p, state.data())));
         for (unsigned int c = 0; c < 3; ++c)
-          result[points[p].local[c]] = x[c] - points[p].reference[c];
+          result[cloth.vertices[p].local[c]] = x[c] - cloth.vertices[p].reference[c];
       }
     return result;
   }
@@ -442,13 +399,13 @@ namespace clothsim::physics
             for (unsigned int i = 0; i < 4; ++i)
               if (pair.moving[i] && w[i] != 0.)
                 {
-                  FrictionPoint    &point = contact.points[contact.n_points++];
-                  const ClothPoint &cloth = points[pair.index[i]];
-                  point.dofs              = cloth.dofs;
-                  point.local             = cloth.local;
-                  point.reference         = cloth.reference;
-                  point.weight            = w[i];
-                  point.carried           = position(pair.index[i], carried.data());
+                  FrictionPoint              &point  = contact.points[contact.n_points++];
+                  const ClothSurface::Vertex &vertex = cloth.vertices[pair.index[i]];
+                  point.dofs                         = vertex.dofs;
+                  point.local                        = vertex.local;
+                  point.reference                    = vertex.reference;
+                  point.weight                       = w[i];
+                  point.carried = cloth.position(pair.index[i], carried.data());
                 }
             if (contact.n_points > 0)
               lagged.push_back(contact);

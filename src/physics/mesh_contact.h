@@ -12,6 +12,7 @@
 // ObstacleContact (physics/contact_term.h), which holds the obstacles and calls it.
 
 #include "mesh/discretization.h"
+#include "physics/cloth_surface.h"
 #include "physics/obstacle.h"
 #include "physics/pair_distance.h"
 #include "physics/term.h"
@@ -99,18 +100,8 @@ namespace clothsim::physics
           std::vector<double>          &state) const;
 
   private:
-    // A vertex of this rank's triangles (owned or ghost).
-    struct ClothPoint
-    {
-      std::array<types::global_dof_index, 3> dofs;
-      std::array<int, 3>                     local;
-      Point<3>                               reference;
-      double                                 mass;
-      bool                                   owned;
-    };
-
-    // One candidate pair: the four points' sources, cloth (index into `points`) or
-    // obstacle vertex (index into its surface), in PairPoints order.
+    // One candidate pair: the four points' sources, cloth (index into `cloth.vertices`)
+    // or obstacle vertex (index into its surface), in PairPoints order.
     struct Pair
     {
       PairKind            kind;
@@ -120,9 +111,6 @@ namespace clothsim::physics
       double              kappa;
       double              threshold; // the mollifier's (edge-edge), else 0
     };
-
-    Point<3>
-    position(const unsigned int point, const double *u_local) const;
 
     // `state` with every cloth point carried along with an obstacle from `from` to `to`.
     std::vector<double>
@@ -144,13 +132,10 @@ namespace clothsim::physics
                   const std::function<void(const Pair &)> &visit,
                   const unsigned int only = numbers::invalid_unsigned_int) const;
 
-    const std::vector<Obstacle>             &obstacles;
-    const MPI_Comm                           communicator;
-    const ContactSettings                   &settings;
-    std::vector<unsigned int>                mesh_obstacles; // indices into `obstacles`
-    std::vector<ClothPoint>                  points;
-    std::vector<std::array<unsigned int, 2>> edges;       // this rank counts them
-    std::vector<double>                      edge_length; // at rest, m
-    std::vector<std::array<unsigned int, 3>> triangles;   // this rank's
+    const std::vector<Obstacle> &obstacles;
+    const MPI_Comm               communicator;
+    const ContactSettings       &settings;
+    std::vector<unsigned int>    mesh_obstacles; // indices into `obstacles`
+    ClothSurface                 cloth;
   };
 } // namespace clothsim::physics

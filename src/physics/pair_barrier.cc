@@ -10,19 +10,23 @@ namespace clothsim::physics
 {
   namespace
   {
-    // κ m(x) s(d) on any number type (the mollifier if threshold > 0).
+    // κ m(x) s(d) on any number type (the mollifier if threshold > 0); `distance`, if
+    // non-null, gets d.
     template <typename Number>
     Number
     potential(const DistanceType                         &type,
               const std::array<std::array<Number, 3>, 4> &X,
               const double                                kappa,
               const double                                d_hat,
-              const double                                threshold)
+              const double                                threshold,
+              Number                                     *distance = nullptr)
     {
       using std::log;
       using std::sqrt;
       const Number d = sqrt(squared_distance<Number>(type.form, X, type.points));
-      Number       s = -(d - d_hat) * (d - d_hat) * log(d / d_hat);
+      if (distance != nullptr)
+        *distance = d;
+      Number s = -(d - d_hat) * (d - d_hat) * log(d / d_hat);
       if (threshold > 0.)
         {
           const auto   ea = pair_detail::minus(X[1], X[0]);
@@ -36,7 +40,8 @@ namespace clothsim::physics
     }
 
     // The derivatives in the coordinates of the `active` points (N = 3 per point), by
-    // nested forward-mode differentiation (`hessian`) or one level (gradient only).
+    // nested forward-mode differentiation (`hessian`) or one level (gradient only, and
+    // then the distance's gradient in `distance_gradient`).
     template <int N>
     void
     differentiate(const DistanceType        &type,
@@ -46,7 +51,8 @@ namespace clothsim::physics
                   const double               d_hat,
                   const double               threshold,
                   const bool                 hessian,
-                  PairBarrier               &result)
+                  PairBarrier               &result,
+                  std::array<double, 12>    &distance_gradient)
     {
       result.n = N;
       if (hessian)
@@ -80,10 +86,14 @@ namespace clothsim::physics
       for (unsigned int i = 0; i < 4; ++i)
         for (unsigned int c = 0; c < 3; ++c)
           X[i][c] = active[i] ? Number(N, k++, x[i][c]) : Number(x[i][c]);
-      const Number phi = potential(type, X, kappa, d_hat, threshold);
+      Number       d;
+      const Number phi = potential(type, X, kappa, d_hat, threshold, &d);
       result.value     = phi.val();
       for (unsigned int i = 0; i < N; ++i)
-        result.gradient[i] = phi.dx(i);
+        {
+          result.gradient[i]   = phi.dx(i);
+          distance_gradient[i] = d.dx(i);
+        }
     }
   } // namespace
 
@@ -96,7 +106,8 @@ namespace clothsim::physics
                const double               d_hat,
                const double               threshold,
                const unsigned int         order,
-               const bool                 project)
+               const bool                 project,
+               const bool                 gauss_newton_mollified)
   {
     const bool         hessian = order >= 2;
     const DistanceType type    = distance_type(kind, x);
@@ -135,25 +146,31 @@ namespace clothsim::physics
         active[i] = active[i] && moving[i];
         n_active += active[i] ? 1 : 0;
       }
-    // The projected tangent of an unmollified pair: Gauss-Newton's κ s''(d) ∇d ∇dᵀ (as
-    // for the analytic obstacles, the part κ s'(d) ∇²d is dropped), from the gradient
-    // alone.
-    const bool  gauss_newton = hessian && project && !mollified;
-    const bool  nested       = hessian && !gauss_newton;
-    PairBarrier reduced;
+    // The projected tangent: Gauss-Newton's κ m(x) s''(d) ∇d ∇dᵀ (as for the analytic
+    // obstacles, the part κ m s'(d) ∇²d is dropped, and so are the mollifier's
+    // derivatives, if it acts), from first derivatives alone.
+    const bool gauss_newton =
+      hessian && project && (!mollified || gauss_newton_mollified);
+    const bool             nested = hessian && !gauss_newton;
+    PairBarrier            reduced;
+    std::array<double, 12> distance_gradient{};
     switch (n_active)
       {
         case 1:
-          differentiate<3>(type, x, active, kappa, d_hat, threshold, nested, reduced);
+          differentiate<3>(
+            type, x, active, kappa, d_hat, threshold, nested, reduced, distance_gradient);
           break;
         case 2:
-          differentiate<6>(type, x, active, kappa, d_hat, threshold, nested, reduced);
+          differentiate<6>(
+            type, x, active, kappa, d_hat, threshold, nested, reduced, distance_gradient);
           break;
         case 3:
-          differentiate<9>(type, x, active, kappa, d_hat, threshold, nested, reduced);
+          differentiate<9>(
+            type, x, active, kappa, d_hat, threshold, nested, reduced, distance_gradient);
           break;
         case 4:
-          differentiate<12>(type, x, active, kappa, d_hat, threshold, nested, reduced);
+          differentiate<12>(
+            type, x, active, kappa, d_hat, threshold, nested, reduced, distance_gradient);
           break;
           default: {
             std::array<std::array<double, 3>, 4> X;
@@ -163,7 +180,7 @@ namespace clothsim::physics
             reduced.value = potential(type, X, kappa, d_hat, threshold);
           }
       }
-    if (gauss_newton && n_active > 0)
+    if (gauss_newton && n_active > 0 && !mollified)
       {
         // ∇φ = κ s'(d) ∇d, so ∇d = ∇φ / (κ s'(d)).
         const double first = kappa * contact::barrier_first(d, d_hat);
@@ -172,6 +189,17 @@ namespace clothsim::physics
           for (unsigned int j = 0; j < reduced.n; ++j)
             reduced.hessian[i * reduced.n + j] =
               curve * reduced.gradient[i] * reduced.gradient[j];
+      }
+    else if (gauss_newton && n_active > 0)
+      {
+        // ∇φ has the mollifier's gradient in it too: ∇d from its own derivatives.
+        const double weight =
+          kappa * contact::barrier_second(d, d_hat) *
+          mollifier(cross_product_3d(x[1] - x[0], x[3] - x[2]).norm_square(), threshold);
+        for (unsigned int i = 0; i < reduced.n; ++i)
+          for (unsigned int j = 0; j < reduced.n; ++j)
+            reduced.hessian[i * reduced.n + j] =
+              weight * distance_gradient[i] * distance_gradient[j];
       }
     else if (hessian && n_active > 0 && project)
       project_to_positive_semidefinite(reduced.hessian.data(), reduced.n);

@@ -9,8 +9,11 @@
 // distance type switches (ε_x = 1e-3 |ea|²|eb|² at rest). Derivatives by forward-mode
 // automatic differentiation (Sacado) of the distance's form. The projected (positive
 // semi-definite) Hessian is Gauss-Newton's κ s''(d) ∇d ∇dᵀ, s'' > 0 (the part κ s'(d) ∇²d
-// dropped, as for the analytic obstacles), while the mollifier acts the exact Hessian
-// with its negative eigenvalues set to zero.
+// dropped, as for the analytic obstacles). While the mollifier acts it is the exact
+// Hessian with its negative eigenvalues set to zero, or (`gauss_newton_mollified`, for
+// self-contact, where stacked layers make thousands of such pairs and the projection
+// would dominate the assembly) κ m(x) s''(d) ∇d ∇dᵀ, the mollifier's derivatives dropped
+// too.
 
 #include "physics/pair_distance.h"
 
@@ -37,7 +40,8 @@ namespace clothsim::physics
                const double               d_hat,
                const double               mollifier_threshold,
                const unsigned int         order,
-               const bool                 project);
+               const bool                 project,
+               const bool                 gauss_newton_mollified = false);
 
   // m(x) for x = |ea × eb|² (m⁴) and its threshold ε_x.
   inline double

@@ -181,14 +181,10 @@ namespace clothsim::physics
 
 
   double
-  pair_step_bound(const PairKind    kind,
-                  const PairPoints &x,
-                  const PairPoints &dx,
-                  const double      fraction)
+  pair_motion_bound(const PairKind kind, const PairPoints &dx)
   {
-    // The pair's distance moves at most L |ds| when the path advances by ds, L the
-    // largest motion of a point of the first primitive plus that of the second, after
-    // their common mean motion (which moves no distance) is taken out.
+    // The largest motion of a point of the first primitive plus that of the second,
+    // after their common mean motion (which moves no distance) is taken out.
     Tensor<1, 3> mean;
     for (const Point<3> &d : dx)
       mean += d;
@@ -197,7 +193,17 @@ namespace clothsim::physics
     double             L0 = 0., L1 = 0.;
     for (unsigned int i = 0; i < 4; ++i)
       (i < first ? L0 : L1) = std::max(i < first ? L0 : L1, (dx[i] - mean).norm());
-    const double L = L0 + L1;
+    return L0 + L1;
+  }
+
+
+  double
+  pair_step_bound(const PairKind    kind,
+                  const PairPoints &x,
+                  const PairPoints &dx,
+                  const double      fraction)
+  {
+    const double L = pair_motion_bound(kind, dx);
 
     const double d0  = std::sqrt(pair_squared_distance(kind, x));
     const double gap = fraction * d0;

@@ -147,6 +147,13 @@ namespace clothsim::physics
   }
 
 
+  // A bound L on how fast the pair's distance changes along the straight path x + s dx:
+  // |d(s) - d(0)| <= L s. L is the largest motion of a point of one primitive plus that
+  // of the other, after the four points' mean motion (which moves no distance) is taken
+  // out.
+  double
+  pair_motion_bound(const PairKind kind, const PairPoints &dx);
+
   // The largest α in [0, 1] such that the pair's distance stays at or above `fraction`
   // of its start value d0 on the straight path x + s dx, s in [0, α] (continuous
   // collision detection, after the additive CCD of Li, Kaufman and Jiang, "Codimensional

@@ -207,6 +207,65 @@ namespace clothsim
         if (dynamic && friction)
           model->add(std::make_unique<physics::ObstacleFriction>(*contact));
       }
+    if (given.self_contact)
+      add_self_contact(parameter_file);
+  }
+
+
+  void
+  ClothModel::add_self_contact(const std::string &parameter_file)
+  {
+    const ContactParameters &given = parameters.contact;
+    if (Utilities::MPI::n_mpi_processes(get_communicator()) > 1)
+      throw InputError(parameter_file,
+                       "Contact/Self contact",
+                       "self-contact runs on one MPI rank only (candidate pairs across "
+                       "ranks are not implemented yet): run without mpirun");
+    VectorType masses;
+    lumped_masses(masses);
+    auto term = std::make_unique<physics::SelfContact>(
+      physics::ContactSettings{given.thickness,
+                               given.barrier_acceleration,
+                               given.slip_velocity},
+      discretization,
+      masses);
+    // The barrier must not act at rest, nor the cloth start through itself.
+    VectorType u, v, ghosted;
+    initialize_owned(u);
+    initialize_owned(v);
+    initialize_ghosted(ghosted);
+    const double rest = term->report(ghosted, given.thickness).min_distance;
+    if (rest < given.thickness)
+      throw InputError(parameter_file,
+                       "Contact/Thickness",
+                       "the thickness " + std::to_string(given.thickness) +
+                         " m exceeds the distance " + std::to_string(rest) +
+                         " m between two of the cloth's primitives (vertex-triangle or "
+                         "edge-edge, sharing no vertex) at rest: the barrier would push "
+                         "them apart; choose a smaller thickness or a coarser mesh");
+    initial_state(u, v);
+    ghosted                     = u;
+    const double start_distance = term->report(ghosted, given.thickness).min_distance;
+    if (start_distance <= 0.)
+      throw InputError(parameter_file,
+                       "Contact/Self contact",
+                       "the cloth's initial state touches or passes through itself");
+    self_contact = term.get();
+    model->add(std::move(term));
+  }
+
+
+  bool
+  ClothModel::update_couplings(const VectorType &u_n, const VectorType &u_new)
+  {
+    if (self_contact == nullptr)
+      return false;
+    VectorType from, to;
+    initialize_ghosted(from);
+    initialize_ghosted(to);
+    from = u_n;
+    to   = u_new;
+    return self_contact->update_couplings(from, to);
   }
 
 
@@ -338,6 +397,11 @@ namespace clothsim
               columns.push_back(name + part);
           }
       }
+    // Self-contact: the smallest distance between primitives that share no vertex (m;
+    // inf beyond ten times the thickness), and the pairs within the thickness.
+    if (self_contact != nullptr)
+      for (const char *column : {"self_contact_min_distance", "self_contact_pairs"})
+        columns.push_back(column);
     if (parameters.output.drape_disc_radius > 0.)
       for (const char *column : {"projected_area", "drape_coefficient"})
         columns.push_back(column);
@@ -372,8 +436,8 @@ namespace clothsim
     // The contact, drape and intersection columns are the last ones (energy_columns()).
     const double drape_radius = parameters.output.drape_disc_radius;
     const bool   intersecting = parameters.output.check_intersections;
-    std::size_t  column =
-      energies.columns.size() - (drape_radius > 0. ? 2 : 0) - (intersecting ? 1 : 0);
+    std::size_t  column       = energies.columns.size() - (drape_radius > 0. ? 2 : 0) -
+                         (intersecting ? 1 : 0) - (self_contact != nullptr ? 2 : 0);
     if (contact != nullptr)
       {
         const physics::ObstacleContact::Report contacts =
@@ -386,6 +450,13 @@ namespace clothsim
               energies.columns[column++] = contacts.forces[o][c];
             energies.columns[column++] = contacts.contacts[o];
           }
+      }
+    if (self_contact != nullptr)
+      {
+        const physics::SelfContact::Report pairs =
+          self_contact->report(u, 10. * parameters.contact.thickness);
+        energies.columns[column++] = pairs.min_distance;
+        energies.columns[column++] = pairs.pairs;
       }
     if (drape_radius == 0. && !intersecting)
       return energies;

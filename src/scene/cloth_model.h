@@ -18,6 +18,7 @@
 #include "mesh/gmsh_reader.h"
 #include "physics/contact_term.h"
 #include "physics/model.h"
+#include "physics/self_contact.h"
 #include "physics/self_intersections.h"
 #include "physics/spring_network.h"
 #include "scene/boundary_conditions.h"
@@ -192,8 +193,10 @@ namespace clothsim
     bool
     has_contact() const override
     {
-      return contact != nullptr;
+      return contact != nullptr || self_contact != nullptr;
     }
+    bool
+    update_couplings(const VectorType &u_n, const VectorType &u_new) override;
     double
     relag_friction(const VectorType &u) override
     {
@@ -281,6 +284,10 @@ namespace clothsim
     // terms' column.
     EnergyReport
     report(const physics::Energies &energies, const double dissipated) const;
+    // With 'Contact/Self contact': the term, after checking the mesh and the initial
+    // state for it.
+    void
+    add_self_contact(const std::string &parameter_file);
     // `energies` with the contact columns (if the scene has obstacles) and the drape
     // columns (if asked for) filled in at u (ghosted).
     EnergyReport
@@ -296,6 +303,7 @@ namespace clothsim
     std::unique_ptr<physics::Model>     model;
     std::shared_ptr<SpringNetwork>      springs;           // Model = mass-spring
     physics::ObstacleContact           *contact = nullptr; // the model's, if obstacles
+    physics::SelfContact *self_contact = nullptr; // the model's, with 'Self contact'
     // Inverse lumped masses (ghosted, 0 on pinned dofs), for the strain limit.
     VectorType inverse_masses;
     // This rank's triangles and their vertices' dofs, for the output.

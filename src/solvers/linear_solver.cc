@@ -33,6 +33,20 @@ namespace clothsim
 
 
   void
+  LinearSolver::sparsity_changed()
+  {
+    if (mumps)
+      mumps->reanalyse();
+    direct_solver.reset();
+    direct_problem.reset();
+    block_preconditioner.reset();
+    preconditioner.reset();
+    amg           = nullptr;
+    force_rebuild = true;
+  }
+
+
+  void
   LinearSolver::update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix)
   {
     if (parameters.method == "direct")

@@ -53,6 +53,11 @@ namespace clothsim
       force_rebuild = true;
     }
 
+    // The matrix's sparsity changed (self-contact pairs): the next
+    // update_preconditioner analyses it afresh.
+    void
+    sparsity_changed();
+
     // Why the last solve failed: no convergence within the iteration limit, a Krylov
     // breakdown (CG on an indefinite tangent), or a failed factorisation.
     const std::string &

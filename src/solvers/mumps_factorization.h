@@ -47,6 +47,13 @@ namespace clothsim
     bool
     factorize(const Epetra_CrsMatrix &matrix);
 
+    // The next factorize() analyses the sparsity again (the matrix's changed).
+    void
+    reanalyse()
+    {
+      analysed = false;
+    }
+
     // x = A⁻¹ b with the last factorisation (collective; b and x on the matrix's rows).
     bool
     solve(const Epetra_Vector &b, Epetra_Vector &x);

@@ -109,6 +109,14 @@ namespace clothsim
     void
     invalidate_tangent(const bool rescaled = false);
 
+    // The tangent matrix's sparsity changed: the next solve analyses it afresh.
+    void
+    sparsity_changed()
+    {
+      tangent_state = TangentState{};
+      linear_solver.sparsity_changed();
+    }
+
     // What 'modified newton' carries from one iteration, and one solve, to the next.
     struct TangentState
     {

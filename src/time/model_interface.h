@@ -92,6 +92,14 @@ namespace clothsim
                const VectorType &u_n,
                VectorType       &u_new,
                const double      path_end) = 0;
+    // After begin_step, before Newton: whether the tangent's sparsity must be made again
+    // (initialize_matrix) to hold the couplings the step from u_n to Newton's guess
+    // u_new (owned) may need (self-contact pairs).
+    virtual bool
+    update_couplings(const VectorType & /*u_n*/, const VectorType & /*u_new*/)
+    {
+      return false;
+    }
     // Friction solved further: its normal forces and tangent planes taken again at the
     // step's solution u (ghosted); returns their largest relative change (0 without
     // friction). Collective.

@@ -127,6 +127,14 @@ namespace clothsim
       throw SimulationError("contact: " + infeasible +
                             "; the run stops here, output up to t = " +
                             std::to_string(time_new - dt) + " s is kept");
+    // Self-contact: pairs that may touch during the step couple vertices that share no
+    // triangle; the tangent's sparsity grows with them.
+    if (model.update_couplings(u_n, u_new))
+      {
+        TimerOutput::Scope scope(timer, "sparsity update");
+        model.initialize_matrix(tangent);
+        newton.sparsity_changed();
+      }
 
     // solve. A tangent kept by 'modified newton' is one of these weights only. ML's
     // hierarchy recomputed on the aggregates of a differently scaled tangent can fail

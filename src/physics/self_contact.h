@@ -1,0 +1,153 @@
+#pragma once
+
+// Contact of the cloth with itself (IPC, Li et al. 2020), as a term of the step's
+// potential: every pair of a vertex and a triangle, and of two edges, that share no
+// vertex pays the pair barrier κ m(x) s(d) (physics/pair_barrier.h, all four points
+// moving) while closer than the contact thickness d̂, with κ = m̄ a_b / d̂ and m̄ the mean
+// lumped mass of the pair's four vertices. Candidates come from bounding-volume
+// hierarchies of the cloth's triangles and edges (physics/aabb_tree.h), built at every
+// evaluation around the positions it is given. Newton's line search is capped by
+// continuous collision detection of every pair whose swept boxes meet
+// (pair_step_bound): no iterate passes through the cloth.
+//
+// A pair couples vertices that share no triangle, so the tangent's sparsity follows the
+// pairs: before each step update_couplings() takes every pair that may come within d̂
+// during the step (with a margin for Newton's corrections) and asks for a new sparsity
+// if one of them is new. A pair whose coupling is not in the sparsity keeps only its
+// vertices' diagonal blocks in the tangent (still positive semi-definite) until the
+// next step's update; dropped_blocks() counts them.
+//
+// One MPI rank only (checked at set-up): across ranks the candidates would need a ghost
+// layer of the vertices near each rank's triangles.
+
+#include "mesh/discretization.h"
+#include "physics/aabb_tree.h"
+#include "physics/cloth_surface.h"
+#include "physics/contact_term.h"
+#include "physics/pair_distance.h"
+#include "physics/term.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+namespace clothsim::physics
+{
+  class SelfContact : public GlobalTerm
+  {
+  public:
+    // `lumped_masses`: owned, each dof's vertex mass (kg).
+    SelfContact(const ContactSettings      &settings,
+                const mesh::Discretization &discretization,
+                const VectorType           &lumped_masses);
+
+    std::string
+    report_column() const override
+    {
+      return "self_contact_energy";
+    }
+
+    // The dof couplings of the vertex pairs taken by the last update_couplings().
+    void
+    add_couplings(TrilinosWrappers::SparsityPattern &sparsity,
+                  const AffineConstraints<double>   &constraints) const override;
+
+    double
+    add_to_step(const VectorType                &u,
+                const StepTerms                 &step,
+                const AffineConstraints<double> &constraints,
+                VectorType                      *gradient,
+                MatrixType                      *hessian,
+                RankVector                      *dissipative_gradient) const override;
+
+    double
+    energy(const VectorType &u,
+           const VectorType &v,
+           RankVector       *damping_force) const override;
+
+    bool
+    caps_steps() const override
+    {
+      return true;
+    }
+
+    // The largest α <= 1 along `direction` from u (both ghosted) that keeps every pair
+    // at a tenth of its distance or farther on the straight path.
+    double
+    step_cap(const VectorType &u, const VectorType &direction) const override;
+
+    // Before a step from u_n to Newton's initial guess u_new (both ghosted): the vertex
+    // pairs of every pair that may come within d̂ during the step (closer than
+    // 2 (d̂ + L) at u_n, L the pair's motion bound on the path to u_new: twice that path,
+    // for Newton's corrections) are coupled. Returns whether a coupling is new (then the
+    // tangent's sparsity must be made again, with add_couplings()).
+    bool
+    update_couplings(const VectorType &u_n, const VectorType &u_new);
+
+    // At u (ghosted): the smallest distance between primitives that share no vertex
+    // (m; +inf if none is closer than `range`), and the pairs within d̂.
+    struct Report
+    {
+      double       min_distance;
+      unsigned int pairs;
+    };
+    Report
+    report(const VectorType &u, const double range) const;
+
+    // Pairs whose Hessian kept only its diagonal vertex blocks (coupling not yet in the
+    // sparsity), since the start.
+    unsigned long
+    dropped_blocks() const
+    {
+      return dropped;
+    }
+
+  private:
+    struct Pair
+    {
+      PairKind                    kind;
+      std::array<unsigned int, 4> index; // into cloth.vertices, in PairPoints order
+      double                      kappa;
+      double                      threshold; // the mollifier's (edge-edge), else 0
+    };
+
+    PairPoints
+    pair_points(const Pair &pair, const double *u_local) const;
+
+    // Calls `visit` for every pair whose primitives' boxes (around their positions at
+    // u, and at u + step if `step_local` is non-null) come within `margin`.
+    void
+    for_each_pair(const double                            *u_local,
+                  const double                            *step_local,
+                  const double                             margin,
+                  const std::function<void(const Pair &)> &visit) const;
+
+    static std::uint64_t
+    key(unsigned int a, unsigned int b)
+    {
+      if (a > b)
+        std::swap(a, b);
+      return (static_cast<std::uint64_t>(a) << 32) | b;
+    }
+    // Whether vertices a and b are coupled in the tangent's sparsity.
+    bool
+    coupled(const unsigned int a, const unsigned int b) const
+    {
+      return a == b || neighbours.count(key(a, b)) > 0 ||
+             extra_couplings.count(key(a, b)) > 0;
+    }
+
+    const ContactSettings             settings;
+    const unsigned int                n_relevant_dofs;
+    ClothSurface                      cloth;
+    std::unordered_set<std::uint64_t> neighbours;      // vertices of a common triangle
+    std::unordered_set<std::uint64_t> extra_couplings; // of the pairs, see above
+    mutable unsigned long             dropped = 0;
+    // Bounding-volume hierarchies of the triangles and the edges, and their boxes.
+    mutable AabbTree         triangle_tree, edge_tree;
+    mutable std::vector<Box> boxes;
+    mutable bool             rebuild_trees = true;
+  };
+} // namespace clothsim::physics

@@ -1,0 +1,213 @@
+// Self-contact (physics/self_contact.h).
+// 1. The term against differences. The sheet of params/contact/sheet-on-sphere.prm on
+//    the N = 21 swing mesh (5 cm triangles, d̂ = 5 mm) folded along y = 0.5: its upper
+//    half laid back over the lower one 0.6 d̂ above it, shifted by 0.31 and 0.17 of a
+//    triangle in x and y (off the diagonals, where distance types change) and rippled by
+//    0.1 d̂, so that hundreds of vertex-triangle and edge-edge pairs, many nearly
+//    parallel (the mollifier at work), lie within d̂. The gradient and
+//    the exact Hessian agree with central differences (relative 1e-5); the projected
+//    tangent is positive along the difference's direction.
+// 2. The line-search cap: pushing the upper half down by twice the gap (through the
+//    lower half) is capped below 1, and on 200 points of the capped path no distance
+//    between primitives falls below a tenth of the smallest at its start.
+// 3. Whole runs, every written frame checked for intersecting triangle pairs (Output/
+//    Check intersections) and every step's self_contact_min_distance > 0: the strip pile
+//    (params/contact/strip-pile.prm, 1 s), and the sheet falling onto the sphere (N = 21,
+//    0.6 s). The same sheet without self-contact passes through itself (so the check can
+//    fail).
+
+#include "physics/self_contact.h"
+#include "contact_checks.h"
+
+using namespace clothsim;
+using namespace clothsim::test;
+
+namespace
+{
+  namespace fs = std::filesystem;
+
+  const fs::path root = scratch_directory("clothsim-self-contact");
+
+  const std::string sphere_scene = "params/contact/sheet-on-sphere.prm";
+  const std::string mesh_21      = "Mesh/Mesh file=../../meshes/swing-21.msh";
+
+  // The folded sheet's displacement (owned).
+  void
+  fold(const ClothModel &model, const double gap, VectorType &u)
+  {
+    const double h    = 0.05;
+    const auto  &mesh = model.get_discretization();
+    for (const auto &element : mesh.elements())
+      for (unsigned int v = 0; v < 3; ++v)
+        {
+          const Point<3> &X = element.reference[v];
+          if (X[1] <= 0.5 + 1e-9 || !model.owned_dofs().is_element(element.dofs[3 * v]))
+            continue;
+          // Shifted off the cells' diagonals (a vertex right above a triangle's edge
+          // sits where the pair's distance type changes, and its Hessian jumps).
+          const Point<3> x(X[0] + 0.31 * h,
+                           1. - X[1] + 0.17 * h,
+                           gap * (1. + 0.1 / 0.6 * std::sin(17. * X[0] + 11. * X[1])));
+          for (unsigned int c = 0; c < 3; ++c)
+            u[element.dofs[3 * v + c]] = x[c] - X[c];
+        }
+    u.compress(VectorOperation::insert);
+  }
+
+  bool
+  check_term(ConditionalOStream &pcout)
+  {
+    const auto scene = load_scene(source_path(sphere_scene), {mesh_21}, MPI_COMM_WORLD);
+    const ClothModel        &model = *scene->model;
+    const ContactParameters &given = scene->parameters().contact;
+    VectorType               masses;
+    model.lumped_masses(masses);
+    auto contact = std::make_unique<physics::SelfContact>(
+      physics::ContactSettings{given.thickness,
+                               given.barrier_acceleration,
+                               given.slip_velocity},
+      model.get_discretization(),
+      masses);
+    physics::SelfContact &self = *contact;
+    physics::Model        terms(model.get_discretization(), model.get_constraints());
+    terms.add(std::move(contact));
+
+    VectorType u, d, ghosted, direction;
+    model.initialize_owned(u);
+    model.initialize_owned(d);
+    model.initialize_ghosted(ghosted);
+    model.initialize_ghosted(direction);
+    const double d_hat = given.thickness;
+    fold(model, 0.6 * d_hat, u);
+    ghosted = u;
+    self.update_couplings(ghosted, ghosted); // every pair's coupling in the sparsity
+    const physics::SelfContact::Report start = self.report(ghosted, d_hat);
+    bool                               passed =
+      check_at_least(pcout, "pairs within d̂ of the folded sheet", start.pairs, 200);
+    passed &=
+      check_above(pcout, "smallest distance / d̂", start.min_distance / d_hat, 0.3);
+
+    StepTerms step;
+    fill(model, d, 1., 0., 5);
+    for (const bool projected : {false, true})
+      {
+        step.projected_tangent = projected;
+        const Derivatives D    = derivatives(terms, model, step, u, d, 1e-8);
+        const std::string what = projected ? "projected: " : "exact: ";
+        passed &= check_below(pcout,
+                              what + "gradient against differences",
+                              D.gradient_error,
+                              1e-5);
+        if (projected)
+          passed &=
+            check_above(pcout, what + "d·H d of the projected tangent", D.curvature, 0.);
+        else
+          passed &= check_below(pcout,
+                                what + "Hessian against differences",
+                                D.hessian_error,
+                                1e-5);
+      }
+    passed &= check_below(pcout,
+                          "Hessian blocks left out of the sparsity",
+                          self.dropped_blocks(),
+                          0.5);
+
+    // Down through the lower half.
+    VectorType push;
+    model.initialize_owned(push);
+    fold(model, 0.6 * d_hat, push); // nonzero exactly on the upper half
+    for (const auto i : model.owned_dofs())
+      push[i] = push[i] != 0. && i % 3 == 2 ? -1.2 * d_hat : 0.;
+    push.compress(VectorOperation::insert);
+    direction          = push;
+    const double alpha = self.step_cap(ghosted, direction);
+    passed &= check_below(pcout, "step cap through the lower half", alpha, 0.999);
+    passed &= check_above(pcout, "step cap", alpha, 0.);
+    double closest = std::numeric_limits<double>::infinity();
+    for (unsigned int k = 0; k <= 200; ++k)
+      {
+        VectorType at(u);
+        at.add(alpha * k / 200., push);
+        ghosted = at;
+        closest = std::min(closest, self.report(ghosted, d_hat).min_distance);
+      }
+    passed &= check_above(pcout,
+                          "smallest distance on the capped path / smallest at its start",
+                          closest / start.min_distance,
+                          0.1);
+    return passed;
+  }
+
+  // A run's largest number of intersecting triangle pairs over its written rows, and
+  // (with self-contact) its smallest distance between primitives.
+  std::pair<double, double>
+  run(ConditionalOStream             &pcout,
+      const std::string              &name,
+      const std::string              &scene,
+      const std::vector<std::string> &overrides,
+      bool                           &passed)
+  {
+    const GuardedRun result =
+      run_guarded(pcout,
+                  source_path(scene),
+                  join(overrides,
+                       {"Output/Progress=off", "Output/Check intersections=true"}),
+                  root / name,
+                  MPI_COMM_WORLD);
+    passed &= result.passed;
+    passed &= check(pcout, result.finished, name + ": finished");
+    if (!result.files_read)
+      return {-1., -1.};
+    const Csv  statistics = read_csv((root / name / "statistics.csv").string());
+    const bool self       = std::find(statistics.header.begin(),
+                                statistics.header.end(),
+                                "self_contact_min_distance") != statistics.header.end();
+    double     pairs = 0., closest = std::numeric_limits<double>::infinity();
+    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+      {
+        pairs = std::max(pairs, statistics.number(r, "intersecting_pairs"));
+        if (self)
+          closest = std::min(closest, statistics.number(r, "self_contact_min_distance"));
+      }
+    return {pairs, closest};
+  }
+
+  bool
+  check_runs(ConditionalOStream &pcout)
+  {
+    bool passed = true;
+    const auto [pile_pairs, pile_closest] =
+      run(pcout, "pile", "params/contact/strip-pile.prm", {"Time/End time=1"}, passed);
+    passed &=
+      check_below(pcout, "pile: intersecting triangle pairs, largest", pile_pairs, 0.5);
+    passed &= check_above(pcout, "pile: closest primitives, m", pile_closest, 0.);
+    const std::vector<std::string> sphere   = {mesh_21, "Time/End time=0.6"};
+    const auto [sheet_pairs, sheet_closest] = run(
+      pcout, "sphere", sphere_scene, join(sphere, {"Contact/Self contact=true"}), passed);
+    passed &= check_below(pcout,
+                          "sphere: intersecting triangle pairs, largest",
+                          sheet_pairs,
+                          0.5);
+    passed &= check_above(pcout, "sphere: closest primitives, m", sheet_closest, 0.);
+    const auto [free_pairs, unused] =
+      run(pcout, "sphere-without", sphere_scene, sphere, passed);
+    (void)unused;
+    passed &= check_above(pcout,
+                          "sphere without self-contact: intersecting pairs, largest",
+                          free_pairs,
+                          0.5);
+    return passed;
+  }
+} // namespace
+
+int
+main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  ConditionalOStream               pcout(std::cout,
+                           Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
+  bool                             passed = check_term(pcout);
+  passed &= check_runs(pcout);
+  pcout << (passed ? "PASSED" : "FAILED") << std::endl;
+  return passed ? 0 : 1;
+}
