@@ -67,7 +67,8 @@ namespace
                                given.barrier_acceleration,
                                given.slip_velocity},
       model.get_discretization(),
-      masses);
+      masses,
+      /*couple_pairs=*/true);
     physics::SelfContact &self = *contact;
     physics::Model        terms(model.get_discretization(), model.get_constraints());
     terms.add(std::move(contact));

@@ -277,12 +277,13 @@ namespace clothsim
   {
     static constexpr unsigned int max_obstacles = 8;
 
-    double                          thickness;            // d̂, m
-    double                          barrier_acceleration; // a_b, m/s²
-    double                          slip_velocity;        // ε_v, m/s
-    unsigned int                    friction_updates;     // solves per step
-    bool                            self_contact;         // the cloth with itself
-    std::vector<ObstacleParameters> obstacles;            // the sections in use
+    double       thickness;                    // d̂, m
+    double       barrier_acceleration;         // a_b, m/s²
+    double       slip_velocity;                // ε_v, m/s
+    unsigned int friction_updates;             // solves per step
+    bool         self_contact;                 // the cloth with itself
+    bool         self_contact_full_pairs;      // whole pair Hessians in the tangent
+    std::vector<ObstacleParameters> obstacles; // the sections in use
 
     static void
     declare_parameters(ParameterHandler &prm);

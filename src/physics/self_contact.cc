@@ -6,6 +6,7 @@
 #include "mesh/ghosted_values.h"
 #include "physics/pair_barrier.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -13,9 +14,11 @@ namespace clothsim::physics
 {
   SelfContact::SelfContact(const ContactSettings      &settings,
                            const mesh::Discretization &discretization,
-                           const VectorType           &lumped_masses)
+                           const VectorType           &lumped_masses,
+                           const bool                  couple_pairs)
     : GlobalTerm("self contact", TermKind::constraint)
     , settings(settings)
+    , couple_pairs(couple_pairs)
     , n_relevant_dofs(discretization.relevant_dofs().n_elements())
     , cloth(discretization, lumped_masses)
   {
@@ -24,6 +27,33 @@ namespace clothsim::physics
     for (const auto &triangle : cloth.triangles)
       for (unsigned int v = 0; v < 3; ++v)
         neighbours.insert(key(triangle[v], triangle[(v + 1) % 3]));
+  }
+
+
+  bool
+  SelfContact::boxes_apart(const PairKind kind, const PairPoints &x, const double gap)
+  {
+    // The boxes of the two primitives (the point and the triangle, or the two edges).
+    const unsigned int first = kind == PairKind::point_triangle ? 1 : 2;
+    double             sum   = 0.;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        double lower_a = x[0][d], upper_a = x[0][d];
+        for (unsigned int i = 1; i < first; ++i)
+          {
+            lower_a = std::min(lower_a, x[i][d]);
+            upper_a = std::max(upper_a, x[i][d]);
+          }
+        double lower_b = x[first][d], upper_b = x[first][d];
+        for (unsigned int i = first + 1; i < 4; ++i)
+          {
+            lower_b = std::min(lower_b, x[i][d]);
+            upper_b = std::max(upper_b, x[i][d]);
+          }
+        const double apart = std::max({lower_b - upper_a, lower_a - upper_b, 0.});
+        sum += apart * apart;
+      }
+    return sum >= gap * gap;
   }
 
 
@@ -121,6 +151,44 @@ namespace clothsim::physics
   }
 
 
+  bool
+  SelfContact::for_each_near_pair(const double                            *u_local,
+                                  const double                             reach,
+                                  const std::function<void(const Pair &)> &visit) const
+  {
+    // The pairs closer than the margin m at the cached state hold every pair closer
+    // than `reach` at any state whose vertices have moved by at most (m - reach)/2 from
+    // it.
+    const double margin = 2. * settings.thickness;
+    if (reach > margin)
+      return false;
+    double moved = near_from.empty() ? std::numeric_limits<double>::infinity() : 0.;
+    for (unsigned int p = 0; p < near_from.size(); ++p)
+      moved = std::max(moved, cloth.position(p, u_local).distance_square(near_from[p]));
+    if (2. * std::sqrt(moved) > margin - reach)
+      {
+        near_pairs.clear();
+        for_each_pair(u_local, nullptr, margin, [&](const Pair &pair) {
+          if (pair_squared_distance(pair.kind, pair_points(pair, u_local)) <
+              margin * margin)
+            {
+              near_pairs.push_back(pair);
+              bool &all = near_pairs.back().coupled;
+              for (unsigned int i = 0; i < 4; ++i)
+                for (unsigned int j = i + 1; j < 4; ++j)
+                  all = all && coupled(pair.index[i], pair.index[j]);
+            }
+        });
+        near_from.resize(cloth.vertices.size());
+        for (unsigned int p = 0; p < near_from.size(); ++p)
+          near_from[p] = cloth.position(p, u_local);
+      }
+    for (const Pair &pair : near_pairs)
+      visit(pair);
+    return true;
+  }
+
+
   void
   SelfContact::add_couplings(TrilinosWrappers::SparsityPattern &sparsity,
                              const AffineConstraints<double> & /*constraints*/) const
@@ -153,13 +221,21 @@ namespace clothsim::physics
     const double      *u_local = ghosted_values(u, n_relevant_dofs);
     const double       d_hat   = settings.thickness;
     const unsigned int order   = hessian != nullptr ? 2 : gradient != nullptr ? 1 : 0;
-    double             value   = 0.;
-    Vector<double>     g(12), g_vertex(3);
-    FullMatrix<double> H(12, 12), H_vertex(3, 3);
-    std::vector<types::global_dof_index> dofs(12), vertex_dofs(3);
-    const std::array<bool, 4>            moving = {{true, true, true, true}};
-    for_each_pair(u_local, nullptr, d_hat, [&](const Pair &pair) {
-      const PairPoints  x = pair_points(pair, u_local);
+    const std::array<bool, 4> moving = {{true, true, true, true}};
+    // The pairs' parts summed per vertex and per pair of vertices first (stacked layers
+    // give each vertex many pairs), then distributed once each.
+    std::vector<Tensor<1, 3>> &forces   = vertex_gradient;
+    std::vector<Tensor<2, 3>> &diagonal = vertex_blocks;
+    forces.assign(cloth.vertices.size(), Tensor<1, 3>());
+    diagonal.assign(cloth.vertices.size(), Tensor<2, 3>());
+    std::unordered_map<std::uint64_t, Tensor<2, 3>> &off_diagonal = pair_blocks;
+    off_diagonal.clear();
+    std::vector<unsigned int> touched;
+    double                    value = 0.;
+    for_each_near_pair(u_local, d_hat, [&](const Pair &pair) {
+      const PairPoints x = pair_points(pair, u_local);
+      if (boxes_apart(pair.kind, x, d_hat))
+        return;
       const PairBarrier b = pair_barrier(pair.kind,
                                          x,
                                          moving,
@@ -173,42 +249,73 @@ namespace clothsim::physics
       if (b.n == 0 || !std::isfinite(b.value))
         return;
       for (unsigned int i = 0; i < 4; ++i)
-        for (unsigned int c = 0; c < 3; ++c)
-          dofs[3 * i + c] = cloth.vertices[pair.index[i]].dofs[c];
-      if (gradient != nullptr)
         {
-          for (unsigned int i = 0; i < 12; ++i)
-            g[i] = b.gradient[i];
-          constraints.distribute_local_to_global(g, dofs, *gradient);
+          const unsigned int a = pair.index[i];
+          if (forces[a] == Tensor<1, 3>() && diagonal[a] == Tensor<2, 3>())
+            touched.push_back(a);
+          for (unsigned int r = 0; r < 3; ++r)
+            {
+              forces[a][r] += b.gradient[3 * i + r];
+              if (hessian != nullptr)
+                for (unsigned int c = 0; c < 3; ++c)
+                  diagonal[a][r][c] += b.hessian[(3 * i + r) * 12 + 3 * i + c];
+            }
         }
       if (hessian == nullptr)
         return;
-      bool all_coupled = true;
-      for (unsigned int i = 0; i < 4; ++i)
-        for (unsigned int j = i + 1; j < 4; ++j)
-          all_coupled = all_coupled && coupled(pair.index[i], pair.index[j]);
-      if (all_coupled)
+      // Off the diagonal only where the sparsity has the coupling (else the block
+      // diagonal alone: that of a positive semi-definite matrix is one too).
+      if (!pair.coupled)
         {
-          for (unsigned int i = 0; i < 12; ++i)
-            for (unsigned int j = 0; j < 12; ++j)
-              H(i, j) = b.hessian[i * 12 + j];
-          constraints.distribute_local_to_global(H, dofs, *hessian);
+          dropped += couple_pairs ? 1 : 0;
           return;
         }
-      // The block diagonal of a positive semi-definite matrix is positive
-      // semi-definite too.
-      ++dropped;
       for (unsigned int i = 0; i < 4; ++i)
-        {
-          for (unsigned int r = 0; r < 3; ++r)
+        for (unsigned int j = 0; j < 4; ++j)
+          if (pair.index[i] < pair.index[j])
             {
-              vertex_dofs[r] = dofs[3 * i + r];
-              for (unsigned int c = 0; c < 3; ++c)
-                H_vertex(r, c) = b.hessian[(3 * i + r) * 12 + 3 * i + c];
+              Tensor<2, 3> &block = off_diagonal[key(pair.index[i], pair.index[j])];
+              for (unsigned int r = 0; r < 3; ++r)
+                for (unsigned int c = 0; c < 3; ++c)
+                  block[r][c] += b.hessian[(3 * i + r) * 12 + 3 * j + c];
             }
-          constraints.distribute_local_to_global(H_vertex, vertex_dofs, *hessian);
-        }
     });
+
+    // A vertex's gradient could sum to zero exactly; touched once is listed once.
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    Vector<double>                       g(3);
+    FullMatrix<double>                   H(3, 3), H_pair(6, 6);
+    std::vector<types::global_dof_index> dofs(3), pair_dofs(6);
+    for (const unsigned int a : touched)
+      {
+        for (unsigned int r = 0; r < 3; ++r)
+          {
+            dofs[r] = cloth.vertices[a].dofs[r];
+            g[r]    = forces[a][r];
+            for (unsigned int c = 0; c < 3; ++c)
+              H(r, c) = diagonal[a][r][c];
+          }
+        if (gradient != nullptr)
+          constraints.distribute_local_to_global(g, dofs, *gradient);
+        if (hessian != nullptr)
+          constraints.distribute_local_to_global(H, dofs, *hessian);
+      }
+    for (const auto &[coupling, block] : off_diagonal)
+      {
+        const unsigned int a = coupling >> 32, b = coupling & 0xffffffffu;
+        for (unsigned int r = 0; r < 3; ++r)
+          {
+            pair_dofs[r]     = cloth.vertices[a].dofs[r];
+            pair_dofs[3 + r] = cloth.vertices[b].dofs[r];
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                H_pair(r, 3 + c) = block[r][c];
+                H_pair(3 + c, r) = block[r][c];
+              }
+          }
+        constraints.distribute_local_to_global(H_pair, pair_dofs, *hessian);
+      }
     return value;
   }
 
@@ -221,16 +328,14 @@ namespace clothsim::physics
     const double             *u_local = ghosted_values(u, n_relevant_dofs);
     double                    value   = 0.;
     const std::array<bool, 4> moving  = {{true, true, true, true}};
-    for_each_pair(u_local, nullptr, settings.thickness, [&](const Pair &pair) {
-      value += pair_barrier(pair.kind,
-                            pair_points(pair, u_local),
-                            moving,
-                            pair.kappa,
-                            settings.thickness,
-                            pair.threshold,
-                            0,
-                            true)
-                 .value;
+    for_each_near_pair(u_local, settings.thickness, [&](const Pair &pair) {
+      const PairPoints x = pair_points(pair, u_local);
+      if (boxes_apart(pair.kind, x, settings.thickness))
+        return;
+      value +=
+        pair_barrier(
+          pair.kind, x, moving, pair.kappa, settings.thickness, pair.threshold, 0, true)
+          .value;
     });
     return value;
   }
@@ -242,8 +347,7 @@ namespace clothsim::physics
     const double *u_local    = ghosted_values(u, n_relevant_dofs);
     const double *step_local = ghosted_values(direction, n_relevant_dofs);
     double        alpha      = 1.;
-    // Pairs whose swept boxes stay apart cannot meet on the path.
-    for_each_pair(u_local, step_local, 0., [&](const Pair &pair) {
+    const auto    cap        = [&](const Pair &pair) {
       PairPoints dx;
       for (unsigned int i = 0; i < 4; ++i)
         dx[i] = Point<3>(cloth.part(pair.index[i], step_local));
@@ -252,7 +356,17 @@ namespace clothsim::physics
                                        pair_points(pair, u_local),
                                        dx,
                                        settings.ccd_fraction));
-    });
+    };
+    // A pair at distance D moves by at most 2 s on the path (s: the largest motion of a
+    // vertex), so it cannot come below a tenth of D if 0.9 D > 2 s: only the pairs
+    // closer than 2 s / 0.9 need the test, the near pairs if they cover that. Else the
+    // pairs whose swept boxes meet (those apart cannot meet on the path).
+    double largest = 0.;
+    for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
+      largest = std::max(largest, cloth.part(p, step_local).norm_square());
+    const double reach = 2. * std::sqrt(largest) / (1. - settings.ccd_fraction);
+    if (!for_each_near_pair(u_local, reach, cap))
+      for_each_pair(u_local, step_local, 0., cap);
     return alpha;
   }
 
@@ -260,6 +374,9 @@ namespace clothsim::physics
   bool
   SelfContact::update_couplings(const VectorType &u_n, const VectorType &u_new)
   {
+    rebuild_trees = true; // a new step: hierarchies fitted to where the cloth is now
+    if (!couple_pairs)
+      return false;
     const double *u_local = ghosted_values(u_n, n_relevant_dofs);
     // The path to twice the guess: Newton's corrections may go as far again.
     std::vector<double> step(n_relevant_dofs);
@@ -267,7 +384,7 @@ namespace clothsim::physics
     for (unsigned int i = 0; i < n_relevant_dofs; ++i)
       step[i] = 2. * (new_local[i] - u_local[i]);
     const double d_hat = settings.thickness;
-    rebuild_trees      = true;
+    near_from.clear(); // the couplings of the near pairs may change
 
     std::unordered_set<std::uint64_t> needed;
     for_each_pair(u_local, step.data(), 2. * d_hat, [&](const Pair &pair) {

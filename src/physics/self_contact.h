@@ -10,12 +10,14 @@
 // continuous collision detection of every pair whose swept boxes meet
 // (pair_step_bound): no iterate passes through the cloth.
 //
-// A pair couples vertices that share no triangle, so the tangent's sparsity follows the
-// pairs: before each step update_couplings() takes every pair that may come within d̂
-// during the step (with a margin for Newton's corrections) and asks for a new sparsity
-// if one of them is new. A pair whose coupling is not in the sparsity keeps only its
-// vertices' diagonal blocks in the tangent (still positive semi-definite) until the
-// next step's update; dropped_blocks() counts them.
+// A pair's Hessian couples vertices that share no triangle. By default only its
+// vertices' 3 x 3 diagonal blocks enter the tangent (the block diagonal of a positive
+// semi-definite matrix is one too), and the tangent's sparsity stays the mesh's. With
+// `couple_pairs` the whole pair enters: the sparsity follows the pairs, as before each
+// step update_couplings() takes every pair that may come within d̂ during the step (with
+// a margin for Newton's corrections) and asks for a new sparsity if one of them is new;
+// a pair whose coupling is not in the sparsity yet keeps its diagonal blocks only until
+// the next step's update (dropped_blocks() counts them).
 //
 // One MPI rank only (checked at set-up): across ranks the candidates would need a ghost
 // layer of the vertices near each rank's triangles.
@@ -30,6 +32,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -38,10 +41,12 @@ namespace clothsim::physics
   class SelfContact : public GlobalTerm
   {
   public:
-    // `lumped_masses`: owned, each dof's vertex mass (kg).
+    // `lumped_masses`: owned, each dof's vertex mass (kg). `couple_pairs`: the whole
+    // pair Hessians in the tangent (see above).
     SelfContact(const ContactSettings      &settings,
                 const mesh::Discretization &discretization,
-                const VectorType           &lumped_masses);
+                const VectorType           &lumped_masses,
+                const bool                  couple_pairs = false);
 
     std::string
     report_column() const override
@@ -96,8 +101,8 @@ namespace clothsim::physics
     Report
     report(const VectorType &u, const double range) const;
 
-    // Pairs whose Hessian kept only its diagonal vertex blocks (coupling not yet in the
-    // sparsity), since the start.
+    // With `couple_pairs`: pairs whose Hessian kept only its diagonal vertex blocks
+    // (coupling not yet in the sparsity), since the start.
     unsigned long
     dropped_blocks() const
     {
@@ -111,10 +116,16 @@ namespace clothsim::physics
       std::array<unsigned int, 4> index; // into cloth.vertices, in PairPoints order
       double                      kappa;
       double                      threshold; // the mollifier's (edge-edge), else 0
+      bool coupled = true; // all its vertices coupled in the sparsity (near pairs only)
     };
 
     PairPoints
     pair_points(const Pair &pair, const double *u_local) const;
+
+    // Whether the boxes around the pair's two primitives are `gap` or more apart (then
+    // so are the primitives: a cheap test before the distance's).
+    static bool
+    boxes_apart(const PairKind kind, const PairPoints &x, const double gap);
 
     // Calls `visit` for every pair whose primitives' boxes (around their positions at
     // u, and at u + step if `step_local` is non-null) come within `margin`.
@@ -123,6 +134,15 @@ namespace clothsim::physics
                   const double                            *step_local,
                   const double                             margin,
                   const std::function<void(const Pair &)> &visit) const;
+
+    // Calls `visit` for every pair that may be closer than `reach` at u: from a list of
+    // the pairs closer than 2 d̂ at an earlier state, kept while no vertex has moved by
+    // more than (2 d̂ - reach)/2 from it (else made again here). Returns false (visiting
+    // none) if `reach` exceeds 2 d̂.
+    bool
+    for_each_near_pair(const double                            *u_local,
+                       const double                             reach,
+                       const std::function<void(const Pair &)> &visit) const;
 
     static std::uint64_t
     key(unsigned int a, unsigned int b)
@@ -140,6 +160,7 @@ namespace clothsim::physics
     }
 
     const ContactSettings             settings;
+    const bool                        couple_pairs;
     const unsigned int                n_relevant_dofs;
     ClothSurface                      cloth;
     std::unordered_set<std::uint64_t> neighbours;      // vertices of a common triangle
@@ -149,5 +170,13 @@ namespace clothsim::physics
     mutable AabbTree         triangle_tree, edge_tree;
     mutable std::vector<Box> boxes;
     mutable bool             rebuild_trees = true;
+    // for_each_near_pair's list and the positions it was made at.
+    mutable std::vector<Pair>     near_pairs;
+    mutable std::vector<Point<3>> near_from;
+    // add_to_step's sums per vertex and per coupled pair of vertices (key(a, b), a < b:
+    // the block of a's rows and b's columns).
+    mutable std::vector<Tensor<1, 3>>                       vertex_gradient;
+    mutable std::vector<Tensor<2, 3>>                       vertex_blocks;
+    mutable std::unordered_map<std::uint64_t, Tensor<2, 3>> pair_blocks;
   };
 } // namespace clothsim::physics

@@ -228,7 +228,8 @@ namespace clothsim
                                given.barrier_acceleration,
                                given.slip_velocity},
       discretization,
-      masses);
+      masses,
+      given.self_contact_full_pairs);
     // The barrier must not act at rest, nor the cloth start through itself.
     VectorType u, v, ghosted;
     initialize_owned(u);
