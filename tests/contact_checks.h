@@ -44,7 +44,7 @@ namespace clothsim::test
     physics::ObstacleContact &barrier = *contact;
     physics::Model            terms(mesh_data, model.get_constraints());
     terms.add(std::move(contact));
-    terms.add(std::make_unique<physics::ObstacleFriction>(barrier));
+    terms.add(std::make_unique<physics::ContactFriction>(barrier));
 
     VectorType u_n, u_new, u, d;
     for (VectorType *vector : {&u_n, &u_new, &u, &d})

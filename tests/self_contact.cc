@@ -6,7 +6,9 @@
 //    0.1 d̂, so that hundreds of vertex-triangle and edge-edge pairs, many nearly
 //    parallel (the mollifier at work), lie within d̂. The gradient and
 //    the exact Hessian agree with central differences (relative 1e-5); the projected
-//    tangent is positive along the difference's direction.
+//    tangent is positive along the difference's direction. With friction between the
+//    layers (μ = 0.3, lagged at the folded state) and the upper half slid by 2 µm
+//    (static) and 0.2 mm (kinetic): gradient and Hessian against differences (1e-5).
 // 2. The line-search cap: pushing the upper half down by twice the gap (through the
 //    lower half) is capped below 1, and on 200 points of the capped path no distance
 //    between primitives falls below a tenth of the smallest at its start.
@@ -15,6 +17,9 @@
 //    (params/contact/strip-pile.prm, 1 s), and the sheet falling onto the sphere (N = 21,
 //    0.6 s). The same sheet without self-contact passes through itself (so the check can
 //    fail).
+// 4. Friction between layers (params/contact/stacked-sheets.prm): a square on a pinned
+//    sheet, gravity turned by 30°, μ = 0.3: it slides with a = g (sin θ - μ cos θ) within
+//    1 % (second difference of its centre's x at 0.2, 0.4, 0.6 s).
 
 #include "physics/self_contact.h"
 #include "contact_checks.h"
@@ -68,10 +73,12 @@ namespace
                                given.slip_velocity},
       model.get_discretization(),
       masses,
-      /*couple_pairs=*/true);
+      /*couple_pairs=*/true,
+      /*friction=*/0.3);
     physics::SelfContact &self = *contact;
     physics::Model        terms(model.get_discretization(), model.get_constraints());
     terms.add(std::move(contact));
+    terms.add(std::make_unique<physics::ContactFriction>(self, "self friction"));
 
     VectorType u, d, ghosted, direction;
     model.initialize_owned(u);
@@ -112,6 +119,39 @@ namespace
                           "Hessian blocks left out of the sparsity",
                           self.dropped_blocks(),
                           0.5);
+    // Friction lagged at the folded state (after the barrier's checks: at zero slip
+    // the friction potential has a jump in its third derivative).
+    ghosted = u;
+    self.lag_friction(ghosted, 1. / 60.);
+    passed &= check_at_least(pcout,
+                             "pairs lagged for friction",
+                             self.lagged_contacts().size(),
+                             200);
+    // The upper half slid along (0.8, 0.6, 0) by 2 µm (static range, ε_v dt = 17 µm)
+    // and 0.2 mm (kinetic) from there.
+    VectorType slip;
+    model.initialize_owned(slip);
+    fold(model, 0.6 * d_hat, slip); // nonzero exactly on the upper half
+    for (const auto i : model.owned_dofs())
+      slip[i] = slip[i] == 0. ? 0. : i % 3 == 0 ? 0.8 : i % 3 == 1 ? 0.6 : 0.;
+    slip.compress(VectorOperation::insert);
+    for (const double size : {2e-6, 2e-4})
+      {
+        VectorType at(u);
+        at.add(size, slip);
+        step.projected_tangent = false;
+        const Derivatives D    = derivatives(terms, model, step, at, d, 1e-3 * size);
+        passed &= check_below(pcout,
+                              "with friction, slips of " + std::to_string(size) +
+                                " m: gradient against differences",
+                              D.gradient_error,
+                              1e-5);
+        passed &= check_below(pcout,
+                              "with friction, slips of " + std::to_string(size) +
+                                " m: Hessian against differences",
+                              D.hessian_error,
+                              1e-5);
+      }
 
     // Down through the lower half.
     VectorType push;
@@ -197,6 +237,19 @@ namespace
                           "sphere without self-contact: intersecting pairs, largest",
                           free_pairs,
                           0.5);
+
+    const auto [layer_pairs, layer_closest] =
+      run(pcout, "stacked", "params/contact/stacked-sheets.prm", {}, passed);
+    passed &=
+      check_below(pcout, "stacked: intersecting pairs, largest", layer_pairs, 0.5);
+    passed &= check_above(pcout, "stacked: closest primitives, m", layer_closest, 0.);
+    const double g = 9.81, mu = 0.3, theta = numbers::PI / 6.;
+    passed &= check_near(pcout,
+                         "stacked: the square's acceleration / g (sin θ - μ cos θ)",
+                         acceleration(root / "stacked") /
+                           (g * (std::sin(theta) - mu * std::cos(theta))),
+                         1.,
+                         1e-2);
     return passed;
   }
 } // namespace

@@ -283,6 +283,7 @@ namespace clothsim
     unsigned int friction_updates;             // solves per step
     bool         self_contact;                 // the cloth with itself
     bool         self_contact_full_pairs;      // whole pair Hessians in the tangent
+    double       self_friction;                // μ between layers of the cloth
     std::vector<ObstacleParameters> obstacles; // the sections in use
 
     static void

@@ -61,6 +61,12 @@ namespace clothsim
       "search never lets the cloth pass through itself. 'Thickness' must be below "
       "the smallest such distance at rest (checked). One MPI rank only.");
     prm.declare_entry(
+      "Self friction",
+      "0",
+      Patterns::Double(0.),
+      "Coulomb's friction coefficient μ between layers of the cloth "
+      "(with 'Self contact'), lagged once per step as with the obstacles.");
+    prm.declare_entry(
       "Self contact tangent",
       "vertex blocks",
       Patterns::Selection("vertex blocks|full pairs"),
@@ -159,6 +165,7 @@ namespace clothsim
     friction_updates        = prm.get_integer("Friction updates");
     self_contact            = prm.get_bool("Self contact");
     self_contact_full_pairs = prm.get("Self contact tangent") == "full pairs";
+    self_friction           = prm.get_double("Self friction");
     prm.leave_subsection();
 
     obstacles.clear();

@@ -47,19 +47,34 @@ namespace clothsim::physics
   // and μ λ (N) taken at the step's start.
   struct LaggedContact
   {
-    unsigned int                 obstacle;
-    unsigned int                 vertex; // in vertices() for a vertex contact
+    unsigned int                 obstacle; // none for self-contact
+    unsigned int                 vertex;   // in vertices() for a vertex contact
     unsigned int                 n_points;
-    std::array<FrictionPoint, 3> points;
+    std::array<FrictionPoint, 4> points;
     Tensor<1, 3>                 tangent[2];
     double                       mu_lambda;
+    // Only each point's own 3 x 3 block in the tangent (self-contact's vertex blocks).
+    bool diagonal_only = false;
+  };
+
+  // A contact term that lags friction data for physics/friction_term.h.
+  class LaggedContacts
+  {
+  public:
+    virtual ~LaggedContacts() = default;
+    // The contacts lagged at the last step's start.
+    virtual const std::vector<LaggedContact> &
+    lagged_contacts() const = 0;
+    // The slip below which friction is static: ε_v times the step's length (m).
+    virtual double
+    static_slip() const = 0;
   };
 
   // Two unit vectors spanning the plane perpendicular to the unit n.
   void
   tangent_basis(const Tensor<1, 3> &n, Tensor<1, 3> (&t)[2]);
 
-  class ObstacleContact : public GlobalTerm
+  class ObstacleContact : public GlobalTerm, public LaggedContacts
   {
   public:
     // `lumped_masses`: owned vector of each dof's vertex mass (kg).
@@ -140,9 +155,14 @@ namespace clothsim::physics
       return obstacles;
     }
     const std::vector<LaggedContact> &
-    lagged_contacts() const
+    lagged_contacts() const override
     {
       return lagged;
+    }
+    double
+    static_slip() const override
+    {
+      return settings.slip_velocity * last_dt;
     }
     const ContactSettings &
     get_settings() const

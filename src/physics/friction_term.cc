@@ -8,25 +8,24 @@
 
 namespace clothsim::physics
 {
-  ObstacleFriction::ObstacleFriction(const ObstacleContact &contact)
-    : GlobalTerm("friction", TermKind::dissipative)
+  ContactFriction::ContactFriction(const LaggedContacts &contact, const std::string &name)
+    : GlobalTerm(name, TermKind::dissipative)
     , contact(contact)
   {}
 
 
   double
-  ObstacleFriction::add_to_step(const VectorType &u,
-                                const StepTerms &,
-                                const AffineConstraints<double> &constraints,
-                                VectorType                      *gradient,
-                                MatrixType                      *hessian,
-                                RankVector *dissipative_gradient) const
+  ContactFriction::add_to_step(const VectorType &u,
+                               const StepTerms &,
+                               const AffineConstraints<double> &constraints,
+                               VectorType                      *gradient,
+                               MatrixType                      *hessian,
+                               RankVector *dissipative_gradient) const
   {
     const double *local =
       ghosted_values(u, static_cast<unsigned int>(u.trilinos_vector().MyLength()));
-    const double epsilon =
-      contact.get_settings().slip_velocity * contact.step_length(); // m
-    double                               value = 0.;
+    const double                         epsilon = contact.static_slip(); // m
+    double                               value   = 0.;
     Vector<double>                       g;
     FullMatrix<double>                   H;
     std::vector<types::global_dof_index> dofs;
@@ -79,8 +78,21 @@ namespace clothsim::physics
             }
         if (gradient != nullptr)
           constraints.distribute_local_to_global(g, dofs, *gradient);
-        if (hessian != nullptr)
+        if (hessian != nullptr && !lagged.diagonal_only)
           constraints.distribute_local_to_global(H, dofs, *hessian);
+        else if (hessian != nullptr)
+          for (unsigned int a = 0; a < lagged.n_points; ++a)
+            {
+              FullMatrix<double>                   block(3, 3);
+              std::vector<types::global_dof_index> point_dofs(3);
+              for (unsigned int r = 0; r < 3; ++r)
+                {
+                  point_dofs[r] = dofs[3 * a + r];
+                  for (unsigned int c = 0; c < 3; ++c)
+                    block(r, c) = H(3 * a + r, 3 * a + c);
+                }
+              constraints.distribute_local_to_global(block, point_dofs, *hessian);
+            }
       }
     return value;
   }

@@ -1,10 +1,10 @@
 #pragma once
 
-// Coulomb friction between the cloth and the obstacles, lagged once per step (Li et al.,
-// "Incremental Potential Contact", 2020, sec. 5): for every contact within the contact
-// thickness at the step's start (a vertex near an analytic obstacle, a pair of primitives
-// near a mesh obstacle), with the normal force λ and the tangent plane (t1, t2) taken
-// there (ObstacleContact::begin_step), the dissipative potential
+// Coulomb friction of the cloth on the obstacles and on itself, lagged once per step (Li
+// et al., "Incremental Potential Contact", 2020, sec. 5): for every contact within the
+// contact thickness at the step's start (a vertex near an analytic obstacle, a pair of
+// primitives near a mesh obstacle), with the normal force λ and the tangent plane (t1,
+// t2) taken there (ObstacleContact::begin_step), the dissipative potential
 //   D = μ λ f0(|u_T|),   u_T = (t1, t2)ᵀ Σ_i w_i (x_i - c_i),
 // over the contact's cloth vertices x_i with their weights w_i in its closest point (1
 // for a vertex), c_i the start points carried along with the obstacle: u_T is the slip
@@ -13,13 +13,17 @@
 
 #include "physics/contact_term.h"
 
+#include <string>
+
 namespace clothsim::physics
 {
-  class ObstacleFriction : public GlobalTerm
+  class ContactFriction : public GlobalTerm
   {
   public:
-    // `contact`: the barrier term that lags the contacts (kept by reference).
-    explicit ObstacleFriction(const ObstacleContact &contact);
+    // `contact`: the barrier term that lags the contacts (kept by reference); `name`:
+    // the term's ("friction" with obstacles, "self friction" between layers).
+    explicit ContactFriction(const LaggedContacts &contact,
+                             const std::string    &name = "friction");
 
     std::string
     report_column() const override
@@ -43,6 +47,6 @@ namespace clothsim::physics
     }
 
   private:
-    const ObstacleContact &contact;
+    const LaggedContacts &contact;
   };
 } // namespace clothsim::physics

@@ -4,21 +4,25 @@
 #include <deal.II/lac/vector.h>
 
 #include "mesh/ghosted_values.h"
+#include "physics/contact_potential.h"
 #include "physics/pair_barrier.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace clothsim::physics
 {
   SelfContact::SelfContact(const ContactSettings      &settings,
                            const mesh::Discretization &discretization,
                            const VectorType           &lumped_masses,
-                           const bool                  couple_pairs)
+                           const bool                  couple_pairs,
+                           const double                friction)
     : GlobalTerm("self contact", TermKind::constraint)
     , settings(settings)
     , couple_pairs(couple_pairs)
+    , friction(friction)
     , n_relevant_dofs(discretization.relevant_dofs().n_elements())
     , cloth(discretization, lumped_masses)
   {
@@ -27,6 +31,19 @@ namespace clothsim::physics
     for (const auto &triangle : cloth.triangles)
       for (unsigned int v = 0; v < 3; ++v)
         neighbours.insert(key(triangle[v], triangle[(v + 1) % 3]));
+    // Connected pieces by union-find over the triangles' vertices.
+    piece.resize(cloth.vertices.size());
+    std::iota(piece.begin(), piece.end(), 0u);
+    const auto root = [this](unsigned int v) {
+      while (piece[v] != v)
+        v = piece[v] = piece[piece[v]];
+      return v;
+    };
+    for (const auto &triangle : cloth.triangles)
+      for (unsigned int v = 1; v < 3; ++v)
+        piece[root(triangle[v])] = root(triangle[0]);
+    for (unsigned int v = 0; v < piece.size(); ++v)
+      piece[v] = root(v);
   }
 
 
@@ -173,10 +190,7 @@ namespace clothsim::physics
               margin * margin)
             {
               near_pairs.push_back(pair);
-              bool &all = near_pairs.back().coupled;
-              for (unsigned int i = 0; i < 4; ++i)
-                for (unsigned int j = i + 1; j < 4; ++j)
-                  all = all && coupled(pair.index[i], pair.index[j]);
+              near_pairs.back().coupled = pair_coupled(pair);
             }
         });
         near_from.resize(cloth.vertices.size());
@@ -409,12 +423,66 @@ namespace clothsim::physics
   }
 
 
+  void
+  SelfContact::lag_friction(const VectorType &u_n, const double dt)
+  {
+    lagged.clear();
+    last_dt = dt;
+    if (friction == 0.)
+      return;
+    const double *u_local = ghosted_values(u_n, n_relevant_dofs);
+    const double  d_hat   = settings.thickness;
+    for_each_pair(u_local, nullptr, d_hat, [&](const Pair &pair) {
+      const PairPoints   x    = pair_points(pair, u_local);
+      const DistanceType type = distance_type(pair.kind, x);
+      const double       d    = std::sqrt(squared_distance(type, x));
+      if (d >= d_hat || d <= 0.)
+        return;
+      const double m =
+        pair.threshold > 0.
+          ? mollifier(cross_product_3d(x[1] - x[0], x[3] - x[2]).norm_square(),
+                      pair.threshold)
+          : 1.;
+      const double lambda = -pair.kappa * m * contact::barrier_first(d, d_hat);
+      if (lambda <= 0.)
+        return;
+      const std::array<double, 4> w = closest_point_weights(type, x);
+      Tensor<1, 3>                r;
+      for (unsigned int i = 0; i < 4; ++i)
+        r += w[i] * x[i];
+      LaggedContact contact;
+      contact.obstacle = numbers::invalid_unsigned_int;
+      contact.vertex   = numbers::invalid_unsigned_int;
+      contact.n_points = 0;
+      for (unsigned int i = 0; i < 4; ++i)
+        if (w[i] != 0.)
+          {
+            const ClothSurface::Vertex &vertex = cloth.vertices[pair.index[i]];
+            FrictionPoint              &point  = contact.points[contact.n_points++];
+            point.dofs                         = vertex.dofs;
+            point.local                        = vertex.local;
+            point.reference                    = vertex.reference;
+            point.weight                       = w[i];
+            point.carried = x[i]; // no slip: the points stay where they start
+          }
+      tangent_basis(r / r.norm(), contact.tangent);
+      contact.mu_lambda     = friction * lambda;
+      contact.diagonal_only = !(couple_pairs && pair_coupled(pair));
+      lagged.push_back(contact);
+    });
+  }
+
+
   SelfContact::Report
-  SelfContact::report(const VectorType &u, const double range) const
+  SelfContact::report(const VectorType &u,
+                      const double      range,
+                      const bool        within_pieces) const
   {
     const double *u_local = ghosted_values(u, n_relevant_dofs);
     Report        result{std::numeric_limits<double>::infinity(), 0};
     for_each_pair(u_local, nullptr, range, [&](const Pair &pair) {
+      if (within_pieces && piece[pair.index[0]] != piece[pair.index[3]])
+        return;
       const double d =
         std::sqrt(pair_squared_distance(pair.kind, pair_points(pair, u_local)));
       if (d < range)

@@ -38,7 +38,7 @@
 
 namespace clothsim::physics
 {
-  class SelfContact : public GlobalTerm
+  class SelfContact : public GlobalTerm, public LaggedContacts
   {
   public:
     // `lumped_masses`: owned, each dof's vertex mass (kg). `couple_pairs`: the whole
@@ -46,7 +46,8 @@ namespace clothsim::physics
     SelfContact(const ContactSettings      &settings,
                 const mesh::Discretization &discretization,
                 const VectorType           &lumped_masses,
-                const bool                  couple_pairs = false);
+                const bool                  couple_pairs = false,
+                const double                friction     = 0.);
 
     std::string
     report_column() const override
@@ -91,6 +92,29 @@ namespace clothsim::physics
     bool
     update_couplings(const VectorType &u_n, const VectorType &u_new);
 
+    // Before a step of length dt from u_n (ghosted): with friction μ > 0, every pair
+    // within d̂ at u_n is lagged for physics/friction_term.h (IPC): its normal force
+    // λ = -κ m(x) s'(d), the plane perpendicular to the line between its closest points,
+    // and its four vertices with their closest-point weights, so that the slip is that of
+    // one closest point against the other.
+    void
+    lag_friction(const VectorType &u_n, const double dt);
+    const std::vector<LaggedContact> &
+    lagged_contacts() const override
+    {
+      return lagged;
+    }
+    double
+    static_slip() const override
+    {
+      return settings.slip_velocity * last_dt;
+    }
+    bool
+    has_friction() const
+    {
+      return friction > 0.;
+    }
+
     // At u (ghosted): the smallest distance between primitives that share no vertex
     // (m; +inf if none is closer than `range`), and the pairs within d̂.
     struct Report
@@ -98,8 +122,12 @@ namespace clothsim::physics
       double       min_distance;
       unsigned int pairs;
     };
+    // `within_pieces`: over the pairs within one connected piece of the mesh only
+    // (stacked sheets may start in contact; one piece must not touch itself at rest).
     Report
-    report(const VectorType &u, const double range) const;
+    report(const VectorType &u,
+           const double      range,
+           const bool        within_pieces = false) const;
 
     // With `couple_pairs`: pairs whose Hessian kept only its diagonal vertex blocks
     // (coupling not yet in the sparsity), since the start.
@@ -151,6 +179,16 @@ namespace clothsim::physics
         std::swap(a, b);
       return (static_cast<std::uint64_t>(a) << 32) | b;
     }
+    // Whether all of the pair's vertices are coupled in the tangent's sparsity.
+    bool
+    pair_coupled(const Pair &pair) const
+    {
+      bool all = true;
+      for (unsigned int i = 0; i < 4; ++i)
+        for (unsigned int j = i + 1; j < 4; ++j)
+          all = all && coupled(pair.index[i], pair.index[j]);
+      return all;
+    }
     // Whether vertices a and b are coupled in the tangent's sparsity.
     bool
     coupled(const unsigned int a, const unsigned int b) const
@@ -161,9 +199,13 @@ namespace clothsim::physics
 
     const ContactSettings             settings;
     const bool                        couple_pairs;
+    const double                      friction; // μ between layers
+    std::vector<LaggedContact>        lagged;
+    double                            last_dt = 0.;
     const unsigned int                n_relevant_dofs;
     ClothSurface                      cloth;
     std::unordered_set<std::uint64_t> neighbours;      // vertices of a common triangle
+    std::vector<unsigned int>         piece;           // per vertex: its connected piece
     std::unordered_set<std::uint64_t> extra_couplings; // of the pairs, see above
     mutable unsigned long             dropped = 0;
     // Bounding-volume hierarchies of the triangles and the edges, and their boxes.

@@ -205,7 +205,7 @@ namespace clothsim
                                           given.obstacles.end(),
                                           [](const auto &o) { return o.friction > 0.; });
         if (dynamic && friction)
-          model->add(std::make_unique<physics::ObstacleFriction>(*contact));
+          model->add(std::make_unique<physics::ContactFriction>(*contact));
       }
     if (given.self_contact)
       add_self_contact(parameter_file);
@@ -221,38 +221,20 @@ namespace clothsim
                        "Contact/Self contact",
                        "self-contact runs on one MPI rank only (candidate pairs across "
                        "ranks are not implemented yet): run without mpirun");
-    VectorType masses;
+    VectorType masses, u, v, initial;
     lumped_masses(masses);
-    auto term = std::make_unique<physics::SelfContact>(
-      physics::ContactSettings{given.thickness,
-                               given.barrier_acceleration,
-                               given.slip_velocity},
-      discretization,
-      masses,
-      given.self_contact_full_pairs);
-    // The barrier must not act at rest, nor the cloth start through itself.
-    VectorType u, v, ghosted;
     initialize_owned(u);
     initialize_owned(v);
-    initialize_ghosted(ghosted);
-    const double rest = term->report(ghosted, given.thickness).min_distance;
-    if (rest < given.thickness)
-      throw InputError(parameter_file,
-                       "Contact/Thickness",
-                       "the thickness " + std::to_string(given.thickness) +
-                         " m exceeds the distance " + std::to_string(rest) +
-                         " m between two of the cloth's primitives (vertex-triangle or "
-                         "edge-edge, sharing no vertex) at rest: the barrier would push "
-                         "them apart; choose a smaller thickness or a coarser mesh");
     initial_state(u, v);
-    ghosted                     = u;
-    const double start_distance = term->report(ghosted, given.thickness).min_distance;
-    if (start_distance <= 0.)
-      throw InputError(parameter_file,
-                       "Contact/Self contact",
-                       "the cloth's initial state touches or passes through itself");
+    initialize_ghosted(initial);
+    initial   = u;
+    auto term = make_self_contact(given, parameter_file, discretization, masses, initial);
     self_contact = term.get();
     model->add(std::move(term));
+    if (parameters.time.integrator != Integrator::static_load_steps &&
+        self_contact->has_friction())
+      model->add(
+        std::make_unique<physics::ContactFriction>(*self_contact, "self friction"));
   }
 
 
@@ -367,6 +349,13 @@ namespace clothsim
                 u_new[i] = u_n[i] + alpha * (u_new[i] - u_n[i]);
             u_new.compress(VectorOperation::insert);
           }
+      }
+    if (self_contact != nullptr)
+      {
+        VectorType start;
+        initialize_ghosted(start);
+        start = u_n;
+        self_contact->lag_friction(start, t_new - t_n);
       }
     if (contact == nullptr)
       return "";

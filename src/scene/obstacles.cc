@@ -2,6 +2,7 @@
 
 #include <deal.II/base/function_parser.h>
 
+#include "io/input_error.h"
 #include "mesh/surface_mesh.h"
 #include "scene/boundary_conditions.h"
 
@@ -78,5 +79,42 @@ namespace clothsim
           });
       }
     return obstacles;
+  }
+
+
+  std::unique_ptr<physics::SelfContact>
+  make_self_contact(const ContactParameters    &given,
+                    const std::string          &parameter_file,
+                    const mesh::Discretization &discretization,
+                    const VectorType           &masses,
+                    const VectorType           &initial)
+  {
+    auto term = std::make_unique<physics::SelfContact>(
+      physics::ContactSettings{given.thickness,
+                               given.barrier_acceleration,
+                               given.slip_velocity},
+      discretization,
+      masses,
+      given.self_contact_full_pairs,
+      given.self_friction);
+    // The barrier must not act at rest, nor the cloth start through itself.
+    VectorType rest;
+    discretization.initialize_ghosted(rest);
+    const double gap =
+      term->report(rest, given.thickness, /*within_pieces=*/true).min_distance;
+    if (gap < given.thickness)
+      throw InputError(parameter_file,
+                       "Contact/Thickness",
+                       "the thickness " + std::to_string(given.thickness) +
+                         " m exceeds the distance " + std::to_string(gap) +
+                         " m between two of the cloth's primitives (vertex-triangle or "
+                         "edge-edge, sharing no vertex, in one connected piece) at rest: "
+                         "the barrier would push "
+                         "them apart; choose a smaller thickness or a coarser mesh");
+    if (term->report(initial, given.thickness).min_distance <= 0.)
+      throw InputError(parameter_file,
+                       "Contact/Self contact",
+                       "the cloth's initial state touches or passes through itself");
+    return term;
   }
 } // namespace clothsim
