@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <sstream>
 
 namespace clothsim::physics
@@ -48,27 +47,15 @@ namespace clothsim::physics
     , mesh_pairs(this->obstacles, this->settings, discretization, lumped_masses)
   {
     discretization.initialize_ghosted(step_start);
-    VectorType prototype;
-    discretization.initialize_ghosted(prototype);
-    std::set<types::global_dof_index> seen;
-    for (const auto &element : discretization.elements())
-      for (unsigned int v = 0; v < 3; ++v)
-        {
-          const types::global_dof_index first = element.dofs[3 * v];
-          if (!discretization.owned_dofs().is_element(first) ||
-              !seen.insert(first).second)
-            continue;
-          Vertex vertex;
-          for (unsigned int c = 0; c < 3; ++c)
-            {
-              vertex.dofs[c]  = element.dofs[3 * v + c];
-              vertex.local[c] = element.local_dofs[3 * v + c];
-            }
-          vertex.reference = element.reference[v];
-          vertex.kappa =
-            lumped_masses[first] * settings.barrier_acceleration / settings.thickness;
-          table.push_back(vertex);
-        }
+    // The owned vertices, in the order of their first triangle.
+    const ClothSurface cloth(discretization, lumped_masses);
+    for (const ClothSurface::Vertex &vertex : cloth.vertices)
+      if (vertex.owned)
+        table.push_back(
+          {vertex.dofs,
+           vertex.local,
+           vertex.reference,
+           vertex.mass * settings.barrier_acceleration / settings.thickness});
   }
 
 
