@@ -14,12 +14,14 @@
 //    between primitives falls below a tenth of the smallest at its start.
 // 3. Whole runs, every written frame checked for intersecting triangle pairs (Output/
 //    Check intersections) and every step's self_contact_min_distance > 0: the strip pile
-//    (params/contact/strip-pile.prm, 1 s), and the sheet falling onto the sphere (N = 21,
-//    0.6 s). The same sheet without self-contact passes through itself (so the check can
-//    fail).
+//    (params/contact/strip-pile.prm, 1 s), the sheet stood on its edge that falls in
+//    folds onto itself (params/contact/sheet-folds.prm, 0.6 s; its layers come within
+//    d̂), and the sheet falling onto the sphere (N = 21, 0.6 s). The same sheet without
+//    self-contact passes through itself (so the check can fail).
 // 4. Friction between layers (params/contact/stacked-sheets.prm): a square on a pinned
 //    sheet, gravity turned by 30°, μ = 0.3: it slides with a = g (sin θ - μ cos θ) within
-//    1 % (second difference of its centre's x at 0.2, 0.4, 0.6 s).
+//    1 % (second difference of its centre's x at 0.2, 0.4, 0.6 s). Turned by 10° only
+//    (tan θ < μ) it sticks: its centre creeps less than ε_v t = 0.6 mm in 0.6 s.
 
 #include "physics/self_contact.h"
 #include "contact_checks.h"
@@ -222,6 +224,12 @@ namespace
     passed &=
       check_below(pcout, "pile: intersecting triangle pairs, largest", pile_pairs, 0.5);
     passed &= check_above(pcout, "pile: closest primitives, m", pile_closest, 0.);
+    const auto [folds_pairs, folds_closest] = run(
+      pcout, "folds", "params/contact/sheet-folds.prm", {"Time/End time=0.6"}, passed);
+    passed &=
+      check_below(pcout, "folds: intersecting triangle pairs, largest", folds_pairs, 0.5);
+    passed &= check_above(pcout, "folds: closest primitives, m", folds_closest, 0.);
+    passed &= check_below(pcout, "folds: closest primitives, m", folds_closest, 0.002);
     const std::vector<std::string> sphere   = {mesh_21, "Time/End time=0.6"};
     const auto [sheet_pairs, sheet_closest] = run(
       pcout, "sphere", sphere_scene, join(sphere, {"Contact/Self contact=true"}), passed);
@@ -250,6 +258,17 @@ namespace
                            (g * (std::sin(theta) - mu * std::cos(theta))),
                          1.,
                          1e-2);
+    const double gentle = numbers::PI / 18.;
+    run(pcout,
+        "sticking",
+        "params/contact/stacked-sheets.prm",
+        {"Loads/Gravity=" + std::to_string(g * std::sin(gentle)) + ", 0, " +
+         std::to_string(-g * std::cos(gentle))},
+        passed);
+    passed &= check_below(pcout,
+                          "sticking at 10°: the square's creep in 0.6 s, m",
+                          std::abs(centre_at(root / "sticking", 0.6)[0]),
+                          1e-3 * 0.6);
     return passed;
   }
 } // namespace

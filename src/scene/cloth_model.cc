@@ -388,7 +388,7 @@ namespace clothsim
           }
       }
     // Self-contact: the smallest distance between primitives that share no vertex (m;
-    // inf beyond ten times the thickness), and the pairs within the thickness.
+    // at most ten times the thickness: none closer), and the pairs within the thickness.
     if (self_contact != nullptr)
       for (const char *column : {"self_contact_min_distance", "self_contact_pairs"})
         columns.push_back(column);
@@ -443,10 +443,10 @@ namespace clothsim
       }
     if (self_contact != nullptr)
       {
-        const physics::SelfContact::Report pairs =
-          self_contact->report(u, 10. * parameters.contact.thickness);
-        energies.columns[column++] = pairs.min_distance;
-        energies.columns[column++] = pairs.pairs;
+        const double                       range = 10. * parameters.contact.thickness;
+        const physics::SelfContact::Report pairs = self_contact->report(u, range);
+        energies.columns[column++]               = std::min(pairs.min_distance, range);
+        energies.columns[column++]               = pairs.pairs;
       }
     if (drape_radius == 0. && !intersecting)
       return energies;
