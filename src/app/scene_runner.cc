@@ -213,6 +213,18 @@ namespace clothsim
             pcout << physics.term_seconds()[k] << " s";
         }
       pcout << std::endl;
+      // Terms that time their own phases (this rank's wall time).
+      for (const physics::Term *term : physics.terms())
+        {
+          const auto phases = term->phase_seconds();
+          if (phases.empty())
+            continue;
+          pcout << term->name() << " phases:";
+          for (unsigned int i = 0; i < phases.size(); ++i)
+            pcout << (i == 0 ? " " : ", ") << phases[i].first << " " << phases[i].second
+                  << " s";
+          pcout << std::endl;
+        }
       return outcome;
     }
 

@@ -25,6 +25,7 @@ namespace clothsim::physics
       bool                                   owned;
     };
 
+    ClothSurface() = default;
     // `lumped_masses`: owned, each dof's vertex mass (kg).
     ClothSurface(const mesh::Discretization &discretization,
                  const VectorType           &lumped_masses);

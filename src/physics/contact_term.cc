@@ -229,7 +229,13 @@ namespace clothsim::physics
     contact.obstacle  = o;
     contact.vertex    = k;
     contact.n_points  = 1;
-    contact.points[0] = {table[k].dofs, table[k].local, table[k].reference, 1., carried};
+    contact.points[0] = {table[k].dofs,
+                         table[k].local,
+                         table[k].reference,
+                         1.,
+                         carried,
+                         true,
+                         table[k].local};
     return contact;
   }
 

@@ -29,10 +29,13 @@ namespace clothsim::physics
     double ccd_fraction = 0.1;   // the line search keeps d >= this share of d(x)
   };
 
-  // A cloth vertex in a lagged contact: its dofs, their local indices in ghosted
-  // vectors, its reference position, its weight w in the contact's closest point, and its
-  // step-start position carried along with the obstacle to the step's end (where it
-  // would be without slipping).
+  // A cloth vertex in a lagged contact: its dofs, their indices in the values that
+  // LaggedContacts::point_values() gives (for obstacles: local indices in ghosted
+  // vectors), its reference position, its weight w in the contact's closest point, and
+  // its step-start position carried along with the obstacle to the step's end (where it
+  // would be without slipping). Then whether this rank adds to the point's rows (it owns
+  // the vertex; obstacle contacts are lagged where each point's rows may be added), and
+  // its dofs' local indices in ghosted vectors, for a RankVector (-1 if not held here).
   struct FrictionPoint
   {
     std::array<types::global_dof_index, 3> dofs;
@@ -40,6 +43,8 @@ namespace clothsim::physics
     Point<3>                               reference;
     double                                 weight;
     Point<3>                               carried;
+    bool                                   owned;
+    std::array<int, 3>                     relevant;
   };
 
   // One contact as lagged at the start of a step (IPC): its slip over the step is
@@ -55,6 +60,9 @@ namespace clothsim::physics
     double                       mu_lambda;
     // Only each point's own 3 x 3 block in the tangent (self-contact's vertex blocks).
     bool diagonal_only = false;
+    // Whether its value counts on this rank (a contact lagged on several ranks counts on
+    // one).
+    bool counted = true;
   };
 
   // A contact term that lags friction data for physics/friction_term.h.
@@ -68,6 +76,13 @@ namespace clothsim::physics
     // The slip below which friction is static: ε_v times the step's length (m).
     virtual double
     static_slip() const = 0;
+    // The values at u (ghosted) that FrictionPoint::local indexes (collective: every
+    // rank calls it).
+    virtual const double *
+    point_values(const VectorType &u) const
+    {
+      return u.trilinos_vector()[0];
+    }
   };
 
   // Two unit vectors spanning the plane perpendicular to the unit n.

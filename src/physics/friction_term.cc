@@ -3,7 +3,6 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
-#include "mesh/ghosted_values.h"
 #include "physics/contact_potential.h"
 
 namespace clothsim::physics
@@ -22,8 +21,7 @@ namespace clothsim::physics
                                MatrixType                      *hessian,
                                RankVector *dissipative_gradient) const
   {
-    const double *local =
-      ghosted_values(u, static_cast<unsigned int>(u.trilinos_vector().MyLength()));
+    const double                        *local   = contact.point_values(u);
     const double                         epsilon = contact.static_slip(); // m
     double                               value   = 0.;
     Vector<double>                       g;
@@ -43,7 +41,8 @@ namespace clothsim::physics
           }
         const double slip[2] = {lagged.tangent[0] * r, lagged.tangent[1] * r};
         const double y       = std::sqrt(slip[0] * slip[0] + slip[1] * slip[1]);
-        value += lagged.mu_lambda * contact::friction_f0(y, epsilon);
+        if (lagged.counted)
+          value += lagged.mu_lambda * contact::friction_f0(y, epsilon);
         if (gradient == nullptr && hessian == nullptr && dissipative_gradient == nullptr)
           continue;
         // ∇_r D = μλ f1(y)/y T u_T;  ∇²_r D = μλ T (f1' ûûᵀ + f1/y (I - ûûᵀ)) Tᵀ;
@@ -73,11 +72,18 @@ namespace clothsim::physics
                 for (unsigned int j = 0; j < 3; ++j)
                   H(3 * a + i, 3 * b + j) =
                     point.weight * lagged.points[b].weight * hess[i][j];
-              if (dissipative_gradient != nullptr)
-                (*dissipative_gradient)[point.local[i]] += point.weight * force[i];
+              if (dissipative_gradient != nullptr && point.owned)
+                (*dissipative_gradient)[point.relevant[i]] += point.weight * force[i];
             }
-        if (gradient != nullptr)
+        bool all_owned = true;
+        for (unsigned int a = 0; a < lagged.n_points; ++a)
+          all_owned = all_owned && lagged.points[a].owned;
+        if (!all_owned)
+          add_owned_rows(lagged, g, H, dofs, constraints, gradient, hessian);
+        else if (gradient != nullptr)
           constraints.distribute_local_to_global(g, dofs, *gradient);
+        if (!all_owned)
+          continue;
         if (hessian != nullptr && !lagged.diagonal_only)
           constraints.distribute_local_to_global(H, dofs, *hessian);
         else if (hessian != nullptr)
@@ -95,5 +101,58 @@ namespace clothsim::physics
             }
       }
     return value;
+  }
+
+
+  void
+  ContactFriction::add_owned_rows(const LaggedContact                        &lagged,
+                                  const Vector<double>                       &g,
+                                  const FullMatrix<double>                   &H,
+                                  const std::vector<types::global_dof_index> &dofs,
+                                  const AffineConstraints<double>            &constraints,
+                                  VectorType                                 *gradient,
+                                  MatrixType                                 *hessian)
+  {
+    // The rows of the points this rank owns (their owners add the others'), with all
+    // columns, or each point's own block only.
+    std::vector<unsigned int> rows;
+    for (unsigned int a = 0; a < lagged.n_points; ++a)
+      if (lagged.points[a].owned)
+        for (unsigned int i = 0; i < 3; ++i)
+          rows.push_back(3 * a + i);
+    if (rows.empty())
+      return;
+    std::vector<types::global_dof_index> row_dofs;
+    Vector<double>                       g_rows(rows.size());
+    for (unsigned int k = 0; k < rows.size(); ++k)
+      {
+        row_dofs.push_back(dofs[rows[k]]);
+        g_rows[k] = g[rows[k]];
+      }
+    if (gradient != nullptr)
+      constraints.distribute_local_to_global(g_rows, row_dofs, *gradient);
+    if (hessian == nullptr)
+      return;
+    if (lagged.diagonal_only)
+      {
+        FullMatrix<double>                   block(3, 3);
+        std::vector<types::global_dof_index> point_dofs(3);
+        for (unsigned int k = 0; k < rows.size(); k += 3)
+          {
+            for (unsigned int r = 0; r < 3; ++r)
+              {
+                point_dofs[r] = row_dofs[k + r];
+                for (unsigned int c = 0; c < 3; ++c)
+                  block(r, c) = H(rows[k + r], rows[k + c]);
+              }
+            constraints.distribute_local_to_global(block, point_dofs, *hessian);
+          }
+        return;
+      }
+    FullMatrix<double> H_rows(rows.size(), dofs.size());
+    for (unsigned int k = 0; k < rows.size(); ++k)
+      for (unsigned int j = 0; j < dofs.size(); ++j)
+        H_rows(k, j) = H(rows[k], j);
+    constraints.distribute_local_to_global(H_rows, row_dofs, dofs, *hessian);
   }
 } // namespace clothsim::physics

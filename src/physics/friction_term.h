@@ -11,9 +11,13 @@
 // relative to the obstacle's surface over the step. f0 (physics/contact_potential.h)
 // turns static friction (slip below ε_v dt) smoothly into kinetic friction μ λ.
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
+
 #include "physics/contact_term.h"
 
 #include <string>
+#include <vector>
 
 namespace clothsim::physics
 {
@@ -47,6 +51,17 @@ namespace clothsim::physics
     }
 
   private:
+    // Adds the contact's gradient g and tangent H (over `dofs`) in the rows of the points
+    // this rank owns only (a contact between vertices of several ranks).
+    static void
+    add_owned_rows(const LaggedContact                        &lagged,
+                   const Vector<double>                       &g,
+                   const FullMatrix<double>                   &H,
+                   const std::vector<types::global_dof_index> &dofs,
+                   const AffineConstraints<double>            &constraints,
+                   VectorType                                 *gradient,
+                   MatrixType                                 *hessian);
+
     const LaggedContacts &contact;
   };
 } // namespace clothsim::physics

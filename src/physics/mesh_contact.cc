@@ -405,7 +405,9 @@ namespace clothsim::physics
                   point.local                        = vertex.local;
                   point.reference                    = vertex.reference;
                   point.weight                       = w[i];
-                  point.carried = cloth.position(pair.index[i], carried.data());
+                  point.carried  = cloth.position(pair.index[i], carried.data());
+                  point.owned    = true;
+                  point.relevant = vertex.local;
                 }
             if (contact.n_points > 0)
               lagged.push_back(contact);

@@ -8,12 +8,48 @@
 #include "physics/pair_barrier.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
 namespace clothsim::physics
 {
+  namespace
+  {
+    using Clock = std::chrono::steady_clock;
+
+    double
+    seconds_since(const Clock::time_point start)
+    {
+      return std::chrono::duration<double>(Clock::now() - start).count();
+    }
+
+    // Adds the wall time of its scope to one of SelfContact's phases, less what the scope
+    // spent gathering and in the broad phase (those count in their own).
+    class PhaseScope
+    {
+    public:
+      PhaseScope(SelfContact::Phases &phases, double &phase)
+        : phases(phases)
+        , phase(phase)
+        , nested(phases.gather + phases.broad)
+        , start(Clock::now())
+      {}
+      ~PhaseScope()
+      {
+        phase += seconds_since(start) - (phases.gather + phases.broad - nested);
+      }
+
+    private:
+      SelfContact::Phases &phases;
+      double              &phase;
+      const double         nested;
+      Clock::time_point    start;
+    };
+  } // namespace
+
+
   SelfContact::SelfContact(const ContactSettings      &settings,
                            const mesh::Discretization &discretization,
                            const VectorType           &lumped_masses,
@@ -23,11 +59,9 @@ namespace clothsim::physics
     , settings(settings)
     , couple_pairs(couple_pairs)
     , friction(friction)
-    , n_relevant_dofs(discretization.relevant_dofs().n_elements())
-    , cloth(discretization, lumped_masses)
+    , whole(discretization, lumped_masses)
+    , cloth(whole.surface())
   {
-    AssertThrow(Utilities::MPI::n_mpi_processes(discretization.get_communicator()) == 1,
-                ExcMessage("self-contact runs on one MPI rank only"));
     for (const auto &triangle : cloth.triangles)
       for (unsigned int v = 0; v < 3; ++v)
         neighbours.insert(key(triangle[v], triangle[(v + 1) % 3]));
@@ -142,7 +176,8 @@ namespace clothsim::physics
               0.25 *
               (mass(p) + mass(triangle[0]) + mass(triangle[1]) + mass(triangle[2])) *
               a_per_d;
-            visit(pair);
+            if (touches_owned(pair))
+              visit(pair);
           }
       }
 
@@ -162,7 +197,8 @@ namespace clothsim::physics
             pair.kappa = 0.25 * (mass(a) + mass(b) + mass(c) + mass(d)) * a_per_d;
             pair.threshold =
               mollifier_threshold(cloth.edge_length[e], cloth.edge_length[k]);
-            visit(pair);
+            if (touches_owned(pair))
+              visit(pair);
           }
       }
   }
@@ -179,6 +215,7 @@ namespace clothsim::physics
     const double margin = 2. * settings.thickness;
     if (reach > margin)
       return false;
+    const Clock::time_point start = Clock::now();
     double moved = near_from.empty() ? std::numeric_limits<double>::infinity() : 0.;
     for (unsigned int p = 0; p < near_from.size(); ++p)
       moved = std::max(moved, cloth.position(p, u_local).distance_square(near_from[p]));
@@ -197,6 +234,7 @@ namespace clothsim::physics
         for (unsigned int p = 0; p < near_from.size(); ++p)
           near_from[p] = cloth.position(p, u_local);
       }
+    phases.broad += seconds_since(start);
     for (const Pair &pair : near_pairs)
       visit(pair);
     return true;
@@ -209,17 +247,19 @@ namespace clothsim::physics
   {
     // Every component of one vertex with every component of the other (constrained
     // dofs included: their rows and columns stay, eliminated when assembled).
-    std::vector<types::global_dof_index> rows(6);
+    // Rows of owned vertices only.
+    std::vector<types::global_dof_index> columns(6);
     for (const std::uint64_t coupling : extra_couplings)
       {
         const unsigned int a = coupling >> 32, b = coupling & 0xffffffffu;
         for (unsigned int c = 0; c < 3; ++c)
           {
-            rows[c]     = cloth.vertices[a].dofs[c];
-            rows[3 + c] = cloth.vertices[b].dofs[c];
+            columns[c]     = cloth.vertices[a].dofs[c];
+            columns[3 + c] = cloth.vertices[b].dofs[c];
           }
-        for (const types::global_dof_index row : rows)
-          sparsity.add_entries(row, rows.begin(), rows.end());
+        for (unsigned int r = 0; r < 6; ++r)
+          if (cloth.vertices[r < 3 ? a : b].owned)
+            sparsity.add_entries(columns[r], columns.begin(), columns.end());
       }
   }
 
@@ -232,7 +272,8 @@ namespace clothsim::physics
                            MatrixType                      *hessian,
                            RankVector * /*dissipative_gradient*/) const
   {
-    const double      *u_local = ghosted_values(u, n_relevant_dofs);
+    const PhaseScope   scope(phases, phases.barrier);
+    const double      *u_local = gathered(u, positions);
     const double       d_hat   = settings.thickness;
     const unsigned int order   = hessian != nullptr ? 2 : gradient != nullptr ? 1 : 0;
     const std::array<bool, 4> moving = {{true, true, true, true}};
@@ -259,12 +300,15 @@ namespace clothsim::physics
                                          order,
                                          step.projected_tangent,
                                          /*gauss_newton_mollified=*/true);
-      value += b.value;
+      if (counted(pair))
+        value += b.value;
       if (b.n == 0 || !std::isfinite(b.value))
         return;
       for (unsigned int i = 0; i < 4; ++i)
         {
           const unsigned int a = pair.index[i];
+          if (!cloth.vertices[a].owned)
+            continue; // its owner adds it
           if (forces[a] == Tensor<1, 3>() && diagonal[a] == Tensor<2, 3>())
             touched.push_back(a);
           for (unsigned int r = 0; r < 3; ++r)
@@ -286,7 +330,8 @@ namespace clothsim::physics
         }
       for (unsigned int i = 0; i < 4; ++i)
         for (unsigned int j = 0; j < 4; ++j)
-          if (pair.index[i] < pair.index[j])
+          if (pair.index[i] < pair.index[j] && (cloth.vertices[pair.index[i]].owned ||
+                                                cloth.vertices[pair.index[j]].owned))
             {
               Tensor<2, 3> &block = off_diagonal[key(pair.index[i], pair.index[j])];
               for (unsigned int r = 0; r < 3; ++r)
@@ -299,8 +344,8 @@ namespace clothsim::physics
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     Vector<double>                       g(3);
-    FullMatrix<double>                   H(3, 3), H_pair(6, 6);
-    std::vector<types::global_dof_index> dofs(3), pair_dofs(6);
+    FullMatrix<double>                   H(3, 3), H_t(3, 3);
+    std::vector<types::global_dof_index> dofs(3), other_dofs(3);
     for (const unsigned int a : touched)
       {
         for (unsigned int r = 0; r < 3; ++r)
@@ -315,20 +360,24 @@ namespace clothsim::physics
         if (hessian != nullptr)
           constraints.distribute_local_to_global(H, dofs, *hessian);
       }
+    // Each block (a, b) and its transpose, in the rows of their owners.
     for (const auto &[coupling, block] : off_diagonal)
       {
         const unsigned int a = coupling >> 32, b = coupling & 0xffffffffu;
         for (unsigned int r = 0; r < 3; ++r)
           {
-            pair_dofs[r]     = cloth.vertices[a].dofs[r];
-            pair_dofs[3 + r] = cloth.vertices[b].dofs[r];
+            dofs[r]       = cloth.vertices[a].dofs[r];
+            other_dofs[r] = cloth.vertices[b].dofs[r];
             for (unsigned int c = 0; c < 3; ++c)
               {
-                H_pair(r, 3 + c) = block[r][c];
-                H_pair(3 + c, r) = block[r][c];
+                H(r, c)   = block[r][c];
+                H_t(c, r) = block[r][c];
               }
           }
-        constraints.distribute_local_to_global(H_pair, pair_dofs, *hessian);
+        if (cloth.vertices[a].owned)
+          constraints.distribute_local_to_global(H, dofs, other_dofs, *hessian);
+        if (cloth.vertices[b].owned)
+          constraints.distribute_local_to_global(H_t, other_dofs, dofs, *hessian);
       }
     return value;
   }
@@ -339,12 +388,13 @@ namespace clothsim::physics
                       const VectorType & /*v*/,
                       RankVector * /*damping_force*/) const
   {
-    const double             *u_local = ghosted_values(u, n_relevant_dofs);
+    const PhaseScope          scope(phases, phases.barrier);
+    const double             *u_local = gathered(u, positions);
     double                    value   = 0.;
     const std::array<bool, 4> moving  = {{true, true, true, true}};
     for_each_near_pair(u_local, settings.thickness, [&](const Pair &pair) {
       const PairPoints x = pair_points(pair, u_local);
-      if (boxes_apart(pair.kind, x, settings.thickness))
+      if (!counted(pair) || boxes_apart(pair.kind, x, settings.thickness))
         return;
       value +=
         pair_barrier(
@@ -358,10 +408,11 @@ namespace clothsim::physics
   double
   SelfContact::step_cap(const VectorType &u, const VectorType &direction) const
   {
-    const double *u_local    = ghosted_values(u, n_relevant_dofs);
-    const double *step_local = ghosted_values(direction, n_relevant_dofs);
-    double        alpha      = 1.;
-    const auto    cap        = [&](const Pair &pair) {
+    const PhaseScope scope(phases, phases.ccd);
+    const double    *u_local    = gathered(u, positions);
+    const double    *step_local = gathered(direction, motions);
+    double           alpha      = 1.;
+    const auto       cap        = [&](const Pair &pair) {
       PairPoints dx;
       for (unsigned int i = 0; i < 4; ++i)
         dx[i] = Point<3>(cloth.part(pair.index[i], step_local));
@@ -391,12 +442,13 @@ namespace clothsim::physics
     rebuild_trees = true; // a new step: hierarchies fitted to where the cloth is now
     if (!couple_pairs)
       return false;
-    const double *u_local = ghosted_values(u_n, n_relevant_dofs);
+    const PhaseScope scope(phases, phases.broad);
+    const double    *u_local = gathered(u_n, positions);
+    gathered(u_new, motions);
     // The path to twice the guess: Newton's corrections may go as far again.
-    std::vector<double> step(n_relevant_dofs);
-    const double       *new_local = ghosted_values(u_new, n_relevant_dofs);
-    for (unsigned int i = 0; i < n_relevant_dofs; ++i)
-      step[i] = 2. * (new_local[i] - u_local[i]);
+    std::vector<double> step(positions.size());
+    for (unsigned int i = 0; i < step.size(); ++i)
+      step[i] = 2. * (motions[i] - positions[i]);
     const double d_hat = settings.thickness;
     near_from.clear(); // the couplings of the near pairs may change
 
@@ -419,7 +471,8 @@ namespace clothsim::physics
       grown = grown || extra_couplings.count(coupling) == 0;
     if (grown)
       extra_couplings = std::move(needed);
-    return grown;
+    // A new sparsity is made by all ranks or none.
+    return Utilities::MPI::max(grown ? 1u : 0u, whole.get_communicator()) == 1u;
   }
 
 
@@ -430,7 +483,7 @@ namespace clothsim::physics
     last_dt = dt;
     if (friction == 0.)
       return;
-    const double *u_local = ghosted_values(u_n, n_relevant_dofs);
+    const double *u_local = gathered(u_n, positions);
     const double  d_hat   = settings.thickness;
     for_each_pair(u_local, nullptr, d_hat, [&](const Pair &pair) {
       const PairPoints   x    = pair_points(pair, u_local);
@@ -460,14 +513,17 @@ namespace clothsim::physics
             const ClothSurface::Vertex &vertex = cloth.vertices[pair.index[i]];
             FrictionPoint              &point  = contact.points[contact.n_points++];
             point.dofs                         = vertex.dofs;
-            point.local                        = vertex.local;
-            point.reference                    = vertex.reference;
-            point.weight                       = w[i];
-            point.carried = x[i]; // no slip: the points stay where they start
+            point.local     = vertex.local; // into the gathered positions
+            point.owned     = vertex.owned;
+            point.relevant  = whole.ghosted_local(pair.index[i]);
+            point.reference = vertex.reference;
+            point.weight    = w[i];
+            point.carried   = x[i]; // no slip: the points stay where they start
           }
       tangent_basis(r / r.norm(), contact.tangent);
       contact.mu_lambda     = friction * lambda;
       contact.diagonal_only = !(couple_pairs && pair_coupled(pair));
+      contact.counted       = counted(pair);
       lagged.push_back(contact);
     });
   }
@@ -478,8 +534,9 @@ namespace clothsim::physics
                       const double      range,
                       const bool        within_pieces) const
   {
-    const double *u_local = ghosted_values(u, n_relevant_dofs);
-    Report        result{std::numeric_limits<double>::infinity(), 0};
+    const PhaseScope scope(phases, phases.report);
+    const double    *u_local = gathered(u, positions);
+    Report           result{std::numeric_limits<double>::infinity(), 0};
     for_each_pair(u_local, nullptr, range, [&](const Pair &pair) {
       if (within_pieces && piece[pair.index[0]] != piece[pair.index[3]])
         return;
@@ -487,9 +544,33 @@ namespace clothsim::physics
         std::sqrt(pair_squared_distance(pair.kind, pair_points(pair, u_local)));
       if (d < range)
         result.min_distance = std::min(result.min_distance, d);
-      if (d < settings.thickness)
+      if (d < settings.thickness && counted(pair))
         ++result.pairs;
     });
+    const MPI_Comm communicator = whole.get_communicator();
+    result.min_distance         = Utilities::MPI::min(result.min_distance, communicator);
+    result.pairs                = Utilities::MPI::sum(result.pairs, communicator);
     return result;
+  }
+
+
+  const double *
+  SelfContact::gathered(const VectorType &u, std::vector<double> &buffer) const
+  {
+    const Clock::time_point start = Clock::now();
+    whole.gather(u, buffer);
+    phases.gather += seconds_since(start);
+    return buffer.data();
+  }
+
+
+  std::vector<std::pair<std::string, double>>
+  SelfContact::phase_seconds() const
+  {
+    return {{"broad phase", phases.broad},
+            {"barrier", phases.barrier},
+            {"CCD", phases.ccd},
+            {"gather", phases.gather},
+            {"report", phases.report}};
   }
 } // namespace clothsim::physics

@@ -19,8 +19,12 @@
 // a pair whose coupling is not in the sparsity yet keeps its diagonal blocks only until
 // the next step's update (dropped_blocks() counts them).
 //
-// One MPI rank only (checked at set-up): across ranks the candidates would need a ghost
-// layer of the vertices near each rank's triangles.
+// Under MPI every rank holds the whole surface (physics/whole_surface.h: all vertices'
+// positions gathered at each evaluation) and evaluates the pairs that touch a vertex it
+// owns, adding to its owned vertices' rows only; a pair's energy counts on the rank that
+// owns its lowest-numbered vertex. A vertex's sums thus see the same pairs in the same
+// order on any number of ranks. Friction between layers is lagged the same way: each rank
+// lags the contacts that touch its vertices and adds to their rows.
 
 #include "mesh/discretization.h"
 #include "physics/aabb_tree.h"
@@ -28,7 +32,9 @@
 #include "physics/contact_term.h"
 #include "physics/pair_distance.h"
 #include "physics/term.h"
+#include "physics/whole_surface.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -109,6 +115,12 @@ namespace clothsim::physics
     {
       return settings.slip_velocity * last_dt;
     }
+    // The gathered positions (the lagged points index them, all ranks' vertices).
+    const double *
+    point_values(const VectorType &u) const override
+    {
+      return gathered(u, friction_positions);
+    }
     bool
     has_friction() const
     {
@@ -128,6 +140,17 @@ namespace clothsim::physics
     report(const VectorType &u,
            const double      range,
            const bool        within_pieces = false) const;
+
+    // Wall time so far (s, this rank) in: gathering positions from all ranks; the broad
+    // phase (the near-pair list's checks and rebuilds); the barrier's pairs in
+    // add_to_step and energy; the CCD step cap; the statistics' report (each less the
+    // gathering and broad phase it called).
+    struct Phases
+    {
+      double gather = 0., broad = 0., barrier = 0., ccd = 0., report = 0.;
+    };
+    std::vector<std::pair<std::string, double>>
+    phase_seconds() const override;
 
     // With `couple_pairs`: pairs whose Hessian kept only its diagonal vertex blocks
     // (coupling not yet in the sparsity), since the start.
@@ -179,6 +202,20 @@ namespace clothsim::physics
         std::swap(a, b);
       return (static_cast<std::uint64_t>(a) << 32) | b;
     }
+    // Whether this rank evaluates the pair (one of its vertices is owned here), and
+    // whether it counts its energy (its first vertex is).
+    bool
+    touches_owned(const Pair &pair) const
+    {
+      return cloth.vertices[pair.index[0]].owned || cloth.vertices[pair.index[1]].owned ||
+             cloth.vertices[pair.index[2]].owned || cloth.vertices[pair.index[3]].owned;
+    }
+    bool
+    counted(const Pair &pair) const
+    {
+      return cloth.vertices[*std::min_element(pair.index.begin(), pair.index.end())]
+        .owned;
+    }
     // Whether all of the pair's vertices are coupled in the tangent's sparsity.
     bool
     pair_coupled(const Pair &pair) const
@@ -197,13 +234,19 @@ namespace clothsim::physics
              extra_couplings.count(key(a, b)) > 0;
     }
 
-    const ContactSettings             settings;
-    const bool                        couple_pairs;
-    const double                      friction; // μ between layers
-    std::vector<LaggedContact>        lagged;
-    double                            last_dt = 0.;
-    const unsigned int                n_relevant_dofs;
-    ClothSurface                      cloth;
+    const ContactSettings      settings;
+    const bool                 couple_pairs;
+    const double               friction; // μ between layers
+    std::vector<LaggedContact> lagged;
+    double                     last_dt = 0.;
+    WholeSurface               whole;
+    const ClothSurface        &cloth; // whole.surface()
+    // The gathered displacements (3 per vertex) of an evaluation's vectors.
+    mutable std::vector<double> positions, motions, friction_positions;
+    mutable Phases              phases;
+    // whole.gather(u, buffer), timed; returns the buffer's values.
+    const double *
+    gathered(const VectorType &u, std::vector<double> &buffer) const;
     std::unordered_set<std::uint64_t> neighbours;      // vertices of a common triangle
     std::vector<unsigned int>         piece;           // per vertex: its connected piece
     std::unordered_set<std::uint64_t> extra_couplings; // of the pairs, see above

@@ -21,6 +21,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace clothsim
@@ -148,6 +149,14 @@ namespace clothsim::physics
     step_cap(const VectorType & /*u*/, const VectorType & /*direction*/) const
     {
       return 1.;
+    }
+
+    // Wall time (s, this rank) the term spent in its own named phases so far (e.g.
+    // self-contact's broad phase, barrier and CCD), for the run's timing report.
+    virtual std::vector<std::pair<std::string, double>>
+    phase_seconds() const
+    {
+      return {};
     }
 
   private:

@@ -216,12 +216,7 @@ namespace clothsim
   ClothModel::add_self_contact(const std::string &parameter_file)
   {
     const ContactParameters &given = parameters.contact;
-    if (Utilities::MPI::n_mpi_processes(get_communicator()) > 1)
-      throw InputError(parameter_file,
-                       "Contact/Self contact",
-                       "self-contact runs on one MPI rank only (candidate pairs across "
-                       "ranks are not implemented yet): run without mpirun");
-    VectorType masses, u, v, initial;
+    VectorType               masses, u, v, initial;
     lumped_masses(masses);
     initialize_owned(u);
     initialize_owned(v);
