@@ -7,6 +7,7 @@
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria_description.h>
 
+#include "mesh/element_matrix_scatter.h"
 #include "mesh/ghosted_values.h"
 
 #include <algorithm>
@@ -276,6 +277,7 @@ namespace clothsim::mesh
       add_couplings(sparsity);
     sparsity.compress();
     matrix.reinit(sparsity);
+    ElementMatrixScatter::sparsity_changed();
   }
 
 

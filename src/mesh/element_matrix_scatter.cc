@@ -15,8 +15,9 @@ namespace clothsim::mesh
     // The matrix is ours to fill: deal.II hands out its Epetra matrix read-only only.
     auto &crs = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
     if (&crs != matrix_id || crs.NumMyNonzeros() != n_nonzeros ||
-        n_dofs != this->n_dofs || status.size() != n_elements)
+        n_dofs != this->n_dofs || status.size() != n_elements || built_at != generation)
       {
+        built_at     = generation;
         matrix_id    = &crs;
         n_nonzeros   = crs.NumMyNonzeros();
         this->n_dofs = n_dofs;

@@ -26,12 +26,22 @@ namespace clothsim::mesh
   public:
     // Starts an assembly into `matrix`, for `n_elements` elements of `n_dofs` dofs each.
     // The positions found for an earlier matrix are kept if it is the same one with the
-    // same sparsity.
+    // same sparsity: the same object, the same number of entries, and no matrix made
+    // since (sparsity_changed()). A matrix made again for a new sparsity may sit at the
+    // old one's address with as many entries (self-contact's couplings shift as a layer
+    // slides), so the address and count alone cannot tell.
     void
     start(TrilinosWrappers::SparseMatrix &matrix,
           unsigned int                    n_elements,
           unsigned int                    n_dofs);
 
+    // A matrix was made (Discretization::initialize_matrix): every scatter finds its
+    // positions again at its next start().
+    static void
+    sparsity_changed()
+    {
+      ++generation;
+    }
     // Adds `cell_matrix` of element `element` (dofs `dofs`) to the matrix, if all its
     // dofs are rows of this rank and none is constrained; returns false otherwise (the
     // matrix is then unchanged).
@@ -48,9 +58,11 @@ namespace clothsim::mesh
       direct,
       other
     };
-    const void  *matrix_id  = nullptr;
-    int          n_nonzeros = -1;
-    unsigned int n_dofs     = 0;
+    static inline unsigned long generation = 0;
+    unsigned long               built_at   = 0;
+    const void                 *matrix_id  = nullptr;
+    int                         n_nonzeros = -1;
+    unsigned int                n_dofs     = 0;
     // Per element: whether it can be added directly; its rows (local indices) and the
     // position of each entry (row-major) within its row.
     std::vector<Status>        status;
