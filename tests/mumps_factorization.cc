@@ -3,7 +3,8 @@
 //   λ_j = a + 2 b cos(j π / (n + 1)),  j = 1 .. n,
 // on one rank or distributed over several: the solution of T x = T x* to round-off, the
 // inertia (negative pivots = negative eigenvalues), a refactorisation with new values on
-// the same sparsity, and a clear failure on a singular matrix.
+// the same sparsity, the definite factorisation (SYM = 1) telling an indefinite matrix by
+// failing or by negative pivots, and a clear failure on a singular matrix.
 
 #include <deal.II/base/mpi.h>
 
@@ -129,6 +130,19 @@ main(int argc, char **argv)
     check(mumps.factorize(matrix), "SPD T factorises (SYM = 1)", rank);
     const double error = solution_error(mumps, matrix);
     check(error < 1e-10, "SPD T: relative error " + sci(error), rank);
+  }
+  {
+    // The definite factorisation of an indefinite T tells (LinearSolver then switches to
+    // the pivoting one): it fails, or it counts negative pivots.
+    const Epetra_CrsMatrix matrix = toeplitz(map, 0.3, 1.);
+    MumpsFactorization     mumps(MPI_COMM_WORLD,
+                             MumpsFactorization::Symmetry::positive_definite);
+    const bool             factorized = mumps.factorize(matrix);
+    check(!factorized || mumps.negative_pivots() > 0,
+          "SYM = 1 on indefinite T tells: " +
+            (factorized ? std::to_string(mumps.negative_pivots()) + " negative pivots"
+                        : mumps.failure()),
+          rank);
   }
   {
     const Epetra_CrsMatrix matrix = toeplitz(map, 0.3, 1., n / 2);

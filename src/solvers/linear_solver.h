@@ -101,8 +101,11 @@ namespace clothsim
     std::unique_ptr<BlockPreconditioner> block_preconditioner;
     // Direct solver: the symbolic factorisation of the first tangent serves all later
     // ones (same sparsity); each new tangent is factorised numerically once. MUMPS
-    // directly (symmetric), KLU through Amesos.
+    // directly (symmetric), KLU through Amesos. MUMPS starts with the definite
+    // factorisation (`definite`) and keeps the pivoting one from the first tangent that
+    // is not positive definite on.
     std::unique_ptr<MumpsFactorization>   mumps;
+    bool                                  definite = true;
     std::unique_ptr<Epetra_LinearProblem> direct_problem;
     std::unique_ptr<Amesos_BaseSolver>    direct_solver;
     // CG iterations of the last solve, and of the first solve after the aggregates were
