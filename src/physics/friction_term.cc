@@ -75,30 +75,35 @@ namespace clothsim::physics
               if (dissipative_gradient != nullptr && point.owned)
                 (*dissipative_gradient)[point.relevant[i]] += point.weight * force[i];
             }
-        bool all_owned = true;
+        // Each owned point's own block; then the gradient and the whole tangent, or for
+        // a contact across ranks their rows of this rank's points.
+        if (hessian != nullptr && lagged.diagonal_only)
+          for (unsigned int a = 0; a < lagged.n_points; ++a)
+            if (lagged.points[a].owned)
+              {
+                FullMatrix<double>                   block(3, 3);
+                std::vector<types::global_dof_index> point_dofs(3);
+                for (unsigned int r = 0; r < 3; ++r)
+                  {
+                    point_dofs[r] = dofs[3 * a + r];
+                    for (unsigned int c = 0; c < 3; ++c)
+                      block(r, c) = H(3 * a + r, 3 * a + c);
+                  }
+                constraints.distribute_local_to_global(block, point_dofs, *hessian);
+              }
+        MatrixType *full      = lagged.diagonal_only ? nullptr : hessian;
+        bool        all_owned = true;
         for (unsigned int a = 0; a < lagged.n_points; ++a)
           all_owned = all_owned && lagged.points[a].owned;
         if (!all_owned)
-          add_owned_rows(lagged, g, H, dofs, constraints, gradient, hessian);
-        else if (gradient != nullptr)
-          constraints.distribute_local_to_global(g, dofs, *gradient);
-        if (!all_owned)
-          continue;
-        if (hessian != nullptr && !lagged.diagonal_only)
-          constraints.distribute_local_to_global(H, dofs, *hessian);
-        else if (hessian != nullptr)
-          for (unsigned int a = 0; a < lagged.n_points; ++a)
-            {
-              FullMatrix<double>                   block(3, 3);
-              std::vector<types::global_dof_index> point_dofs(3);
-              for (unsigned int r = 0; r < 3; ++r)
-                {
-                  point_dofs[r] = dofs[3 * a + r];
-                  for (unsigned int c = 0; c < 3; ++c)
-                    block(r, c) = H(3 * a + r, 3 * a + c);
-                }
-              constraints.distribute_local_to_global(block, point_dofs, *hessian);
-            }
+          add_owned_rows(lagged, g, H, dofs, constraints, gradient, full);
+        else
+          {
+            if (gradient != nullptr)
+              constraints.distribute_local_to_global(g, dofs, *gradient);
+            if (full != nullptr)
+              constraints.distribute_local_to_global(H, dofs, *full);
+          }
       }
     return value;
   }
@@ -114,7 +119,7 @@ namespace clothsim::physics
                                   MatrixType                                 *hessian)
   {
     // The rows of the points this rank owns (their owners add the others'), with all
-    // columns, or each point's own block only.
+    // columns.
     std::vector<unsigned int> rows;
     for (unsigned int a = 0; a < lagged.n_points; ++a)
       if (lagged.points[a].owned)
@@ -133,22 +138,6 @@ namespace clothsim::physics
       constraints.distribute_local_to_global(g_rows, row_dofs, *gradient);
     if (hessian == nullptr)
       return;
-    if (lagged.diagonal_only)
-      {
-        FullMatrix<double>                   block(3, 3);
-        std::vector<types::global_dof_index> point_dofs(3);
-        for (unsigned int k = 0; k < rows.size(); k += 3)
-          {
-            for (unsigned int r = 0; r < 3; ++r)
-              {
-                point_dofs[r] = row_dofs[k + r];
-                for (unsigned int c = 0; c < 3; ++c)
-                  block(r, c) = H(rows[k + r], rows[k + c]);
-              }
-            constraints.distribute_local_to_global(block, point_dofs, *hessian);
-          }
-        return;
-      }
     FullMatrix<double> H_rows(rows.size(), dofs.size());
     for (unsigned int k = 0; k < rows.size(); ++k)
       for (unsigned int j = 0; j < dofs.size(); ++j)

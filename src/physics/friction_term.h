@@ -51,8 +51,9 @@ namespace clothsim::physics
     }
 
   private:
-    // Adds the contact's gradient g and tangent H (over `dofs`) in the rows of the points
-    // this rank owns only (a contact between vertices of several ranks).
+    // Adds the contact's gradient g and tangent H (over `dofs`; `hessian` may be null) in
+    // the rows of the points this rank owns only (a contact between vertices of several
+    // ranks).
     static void
     add_owned_rows(const LaggedContact                        &lagged,
                    const Vector<double>                       &g,
