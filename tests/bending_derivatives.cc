@@ -1,5 +1,6 @@
 // Bending element (midedge-director shell, physics/bending.h) on random triangles, for
-// every director function f and for flat and curved rest states:
+// every director function f, for flat and curved rest states, isotropic and (half the
+// trials) orthotropic materials with a random warp:
 //   1. the gradient (9 positions, 3 angles ψ) against central differences of the energy,
 //      and the exact Hessian against central differences of the gradient (errors
 //      max|g - g_fd| / max|g| with positions measured in units of the triangle's size,
@@ -132,7 +133,15 @@ namespace
         c.material = {0.1 + 9.9 * (0.5 + 0.5 * uniform(generator)),
                       0.45 * (0.5 + 0.5 * uniform(generator)),
                       function};
-        c.size     = std::pow(10., -1. + uniform(generator));
+        if (coin(generator))
+          {
+            // Orthotropic: a weft up to 10 times softer, a random warp.
+            c.material.weft_rigidity =
+              c.material.rigidity * (0.1 + 0.45 * (1. + uniform(generator)));
+            for (unsigned int d = 0; d < 3; ++d)
+              c.material.warp_direction[d] = uniform(generator);
+          }
+        c.size = std::pow(10., -1. + uniform(generator));
         for (auto &p : c.reference)
           for (unsigned int d = 0; d < 3; ++d)
             p[d] = c.size * uniform(generator);

@@ -107,7 +107,11 @@ namespace clothsim::test
     return invert(metric) * change;
   }
 
-  // W = |T̄| D/2 [ν (tr M)² + (1-ν) tr(M²)].
+  // W = |T̄| D/2 [ν (tr M)² + (1-ν) tr(M²)]; orthotropic (weft rigidity >= 0), in the
+  // frame e_1 = the warp projected onto the reference plane, e_2 = n x e_1, with the
+  // Cartesian curvature change K_ij = (b - B̄)_ab (a^a · e_i)(a^b · e_j), b - B̄ = Ā M:
+  // W = |T̄| [½ D_1 K_11² + ν √(D_1 D_2) K_11 K_22 + ½ D_2 K_22² + (1-ν) √(D_1 D_2)
+  // K_12²].
   inline double
   expected_energy(const BendingMaterial   &material,
                   const TrianglePositions &reference,
@@ -122,7 +126,33 @@ namespace clothsim::test
       0.5 *
       cross_product_3d(reference[1] - reference[0], reference[2] - reference[0]).norm();
     const double nu = material.poisson_ratio;
-    return area * material.rigidity / 2. *
-           (nu * trace(M) * trace(M) + (1. - nu) * trace(M * M));
+    if (material.weft_rigidity < 0.)
+      return area * material.rigidity / 2. *
+             (nu * trace(M) * trace(M) + (1. - nu) * trace(M * M));
+
+    const Tensor<1, 3> a[2] = {reference[1] - reference[0], reference[2] - reference[0]};
+    Tensor<2, 2>       metric;
+    for (unsigned int i = 0; i < 2; ++i)
+      for (unsigned int j = 0; j < 2; ++j)
+        metric[i][j] = a[i] * a[j];
+    const Tensor<2, 2> change  = metric * M;
+    const Tensor<2, 2> inverse = invert(metric);
+    const Tensor<1, 3> dual[2] = {inverse[0][0] * a[0] + inverse[0][1] * a[1],
+                                  inverse[1][0] * a[0] + inverse[1][1] * a[1]};
+    Tensor<1, 3>       n       = cross_product_3d(a[0], a[1]);
+    n /= n.norm();
+    Tensor<1, 3> e1 = material.warp_direction - (material.warp_direction * n) * n;
+    e1 /= e1.norm();
+    const Tensor<1, 3> e[2] = {e1, cross_product_3d(n, e1)};
+    Tensor<2, 2>       K;
+    for (unsigned int i = 0; i < 2; ++i)
+      for (unsigned int j = 0; j < 2; ++j)
+        for (unsigned int p = 0; p < 2; ++p)
+          for (unsigned int q = 0; q < 2; ++q)
+            K[i][j] += change[p][q] * (dual[p] * e[i]) * (dual[q] * e[j]);
+    const double D1 = material.rigidity, D2 = material.weft_rigidity;
+    const double mean = std::sqrt(D1 * D2);
+    return area * (0.5 * D1 * K[0][0] * K[0][0] + nu * mean * K[0][0] * K[1][1] +
+                   0.5 * D2 * K[1][1] * K[1][1] + (1. - nu) * mean * K[0][1] * K[0][1]);
   }
 } // namespace clothsim::test

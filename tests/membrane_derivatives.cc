@@ -1,6 +1,7 @@
 // Membrane element: gradient and exact Hessian against central finite differences on
-// random triangles and random deformations (stretched, compressed, sheared, rotated), and
-// the projected tangent's positive semi-definiteness. Asserts relative errors < 1e-6.
+// random triangles and random deformations (stretched, compressed, sheared, rotated), of
+// isotropic and (every other trial) orthotropic materials with a random warp, and the
+// projected tangent's positive semi-definiteness. Asserts relative errors < 1e-6.
 // The mixed-stress tangent (linearised from a point x_p) against the exact Hessian plus
 // the geometric stiffness of the stress difference, each stress read off the gradient of
 // a flat triangle with the metric in question, the linearised metric taken by central
@@ -34,7 +35,7 @@ namespace
   // triangle with that metric is x1: f_1 = |T̄| S^1b a_b, x2: f_2 = |T̄| S^2b a_b, solved
   // in the plane's basis.
   std::array<std::array<double, 2>, 2>
-  stress_at_metric(const MembraneMaterial     &material,
+  stress_at_metric(const MembraneStiffness    &material,
                    const MembraneRestData     &rest,
                    const std::array<double, 3> m)
   {
@@ -69,15 +70,28 @@ main()
 
   for (unsigned int trial = 0; trial < 200; ++trial)
     {
-      const MembraneMaterial material{50. + 100. * std::abs(uniform(generator)),
-                                      0.45 * std::abs(uniform(generator))};
-      TrianglePositions      reference;
+      MembraneMaterial  law{50. + 100. * std::abs(uniform(generator)),
+                           0.45 * std::abs(uniform(generator))};
+      TrianglePositions reference;
       for (auto &p : reference)
         for (unsigned int d = 0; d < 3; ++d)
           p[d] = 0.1 * uniform(generator);
       const MembraneRestData rest = membrane_rest_data(reference);
       if (rest.area < 1e-4)
         continue;
+      if (trial % 2 == 1)
+        {
+          // Orthotropic: a weft 1 to 20 times softer, a soft bias, a random warp
+          // (ν_12² k_2 < k_1 holds for ν_12 < 0.45).
+          law.weft_stretch_stiffness =
+            law.stretch_stiffness / (1. + 19. * std::abs(uniform(generator)));
+          law.shear_stiffness =
+            0.01 * law.stretch_stiffness +
+            0.3 * law.stretch_stiffness * std::abs(uniform(generator));
+          for (unsigned int d = 0; d < 3; ++d)
+            law.warp_direction[d] = uniform(generator);
+        }
+      const MembraneStiffness material = membrane_stiffness(law, reference, rest);
 
       // Random deformation gradient-like map: scale in (0.5, 1.5) (compression included),
       // plus a perturbation of each vertex.

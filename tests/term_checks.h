@@ -116,17 +116,15 @@ namespace clothsim::test
     const double                    alpha = parameters.damping.mass_proportional;
     if (name == "membrane")
       result->add(std::make_unique<physics::MembraneTerm>(
-        membrane_material, rho, material.lumped_mass, alpha));
+        mesh, membrane_material, rho, material.lumped_mass, alpha));
     else if (name == "gravity")
       result->add(std::make_unique<physics::GravityTerm>(rho, parameters.loads.gravity));
     else if (name == "kinetic")
       result->add(std::make_unique<physics::InertiaTerm>(rho, material.lumped_mass));
     else if (name == "damping")
       {
-        membrane = std::make_unique<physics::MembraneTerm>(membrane_material,
-                                                           rho,
-                                                           material.lumped_mass,
-                                                           alpha);
+        membrane = std::make_unique<physics::MembraneTerm>(
+          mesh, membrane_material, rho, material.lumped_mass, alpha);
         result->add(std::make_unique<physics::RayleighDamping>(
           mesh,
           alpha,

@@ -159,10 +159,10 @@ namespace clothsim
 
 
   void
-  Parameters::declare_parameters(ParameterHandler &prm)
+  Parameters::declare_parameters(ParameterHandler &prm, const std::string &preset)
   {
     SceneParameters::declare_parameters(prm);
-    MaterialParameters::declare_parameters(prm);
+    MaterialParameters::declare_parameters(prm, preset);
     MassSpringParameters::declare_parameters(prm);
     DampingParameters::declare_parameters(prm);
     LoadParameters::declare_parameters(prm);
@@ -189,6 +189,57 @@ namespace clothsim
     output.parse_parameters(prm);
     contact.parse_parameters(prm);
   }
+
+
+  namespace
+  {
+    // Reads the file (.prm or .json) into `prm`, then the --set assignments.
+    void
+    parse_file_and_overrides(ParameterHandler               &prm,
+                             const std::string              &file,
+                             const std::vector<std::string> &overrides)
+    {
+      try
+        {
+          prm.parse_input(file, "", /*skip_undefined=*/false, /*assert_mandatory=*/false);
+        }
+      catch (const std::exception &e)
+        {
+          const std::string message = one_line(e);
+          const auto [entry, text] =
+            describe_parse_error(message, current_section(file, message));
+          throw InputError(file, entry, text);
+        }
+
+      // --set "Section/Sub/Name=value"
+      for (const std::string &assignment : overrides)
+        {
+          const auto equals = assignment.find('=');
+          if (equals == std::string::npos)
+            throw InputError("--set", assignment, "expected \"Section/Name=value\"");
+          const auto path =
+            Utilities::split_string_list(assignment.substr(0, equals), '/');
+          const std::string value = Utilities::trim(assignment.substr(equals + 1));
+          try
+            {
+              for (unsigned int i = 0; i + 1 < path.size(); ++i)
+                prm.enter_subsection(path[i]);
+              prm.set(path.back(), value);
+              for (unsigned int i = 0; i + 1 < path.size(); ++i)
+                prm.leave_subsection();
+            }
+          catch (const std::exception &e)
+            {
+              throw InputError(
+                "--set",
+                assignment.substr(0, equals),
+                "no such entry, or the value does not match its pattern (see "
+                "clothsim --print-parameters): " +
+                  one_line(e));
+            }
+        }
+    }
+  } // namespace
 
 
   ParameterInput
@@ -218,43 +269,17 @@ namespace clothsim
         std::vector<std::string> chain;
         check_includes(file, chain);
       }
-    try
+    parse_file_and_overrides(prm, file, overrides);
+    // A fabric preset supplies defaults: declare again with them, and read the input
+    // again, so that what the file and --set give overrides the preset.
+    prm.enter_subsection("Material");
+    const std::string preset = prm.get("Preset");
+    prm.leave_subsection();
+    if (preset != "none")
       {
-        prm.parse_input(file, "", /*skip_undefined=*/false, /*assert_mandatory=*/false);
-      }
-    catch (const std::exception &e)
-      {
-        const std::string message = one_line(e);
-        const auto [entry, text] =
-          describe_parse_error(message, current_section(file, message));
-        throw InputError(file, entry, text);
-      }
-
-    // --set "Section/Sub/Name=value"
-    for (const std::string &assignment : overrides)
-      {
-        const auto equals = assignment.find('=');
-        if (equals == std::string::npos)
-          throw InputError("--set", assignment, "expected \"Section/Name=value\"");
-        const auto path = Utilities::split_string_list(assignment.substr(0, equals), '/');
-        const std::string value = Utilities::trim(assignment.substr(equals + 1));
-        try
-          {
-            for (unsigned int i = 0; i + 1 < path.size(); ++i)
-              prm.enter_subsection(path[i]);
-            prm.set(path.back(), value);
-            for (unsigned int i = 0; i + 1 < path.size(); ++i)
-              prm.leave_subsection();
-          }
-        catch (const std::exception &e)
-          {
-            throw InputError(
-              "--set",
-              assignment.substr(0, equals),
-              "no such entry, or the value does not match its pattern (see "
-              "clothsim --print-parameters): " +
-                one_line(e));
-          }
+        prm.clear();
+        Parameters::declare_parameters(prm, preset);
+        parse_file_and_overrides(prm, file, overrides);
       }
 
     try
@@ -300,6 +325,13 @@ namespace clothsim
                          " needs 'backward euler', 'bdf2' or 'static "
                          "load steps' (the barrier holds the state solved for, which the "
                          "midpoint rules and the explicit integrators do not end on)");
+    if (mass_spring && parameters.material.orthotropic &&
+        parameters.mass_spring.derived_constants)
+      throw InputError(file,
+                       "Material/Anisotropy",
+                       "the mass-spring model derives its spring constants for an "
+                       "isotropic sheet only; use 'isotropic', or 'Mass spring/Spring "
+                       "constants = given'");
     if (mass_spring && !parameters.material.lumped_mass)
       throw InputError(file,
                        "Material/Mass",

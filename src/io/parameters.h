@@ -49,9 +49,18 @@ namespace clothsim
     bool        bending;           // assemble the bending energy
     double      bending_rigidity;  // D, N·m (derived when given as E and thickness)
     std::string director_function; // "angle", "sine", "tangent" (see physics/bending.h)
+    std::string preset; // a fabric preset's name (io/fabric_presets.h), or none
+    // Orthotropic sheets (physics/sheet_stiffness.h): the warp's stiffness and rigidity
+    // are stretch_stiffness and bending_rigidity, Poisson's ratio is ν_12.
+    bool         orthotropic;
+    double       weft_stretch_stiffness; // E_2 h, N/m
+    double       shear_stiffness;        // G_12 h, N/m
+    double       weft_bending_rigidity;  // D_2, N·m
+    Tensor<1, 3> warp_direction;         // in space, m (any length)
 
+    // `preset`: the fabric preset whose values are the defaults ("none": none).
     static void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm, const std::string &preset = "none");
     void
     parse_parameters(ParameterHandler &prm);
   };
@@ -306,8 +315,9 @@ namespace clothsim
     OutputParameters          output;
     ContactParameters         contact;
 
+    // `preset`: the fabric preset whose values are the Material defaults.
     static void
-    declare_parameters(ParameterHandler &prm);
+    declare_parameters(ParameterHandler &prm, const std::string &preset = "none");
     void
     parse_parameters(ParameterHandler &prm);
   };

@@ -4,26 +4,45 @@
 
 #include <deal.II/base/numbers.h>
 
+#include "io/fabric_presets.h"
 #include "io/input_error.h"
 
 namespace clothsim
 {
   void
-  MaterialParameters::declare_parameters(ParameterHandler &prm)
+  MaterialParameters::declare_parameters(ParameterHandler &prm, const std::string &preset)
   {
+    // An entry's default: the preset's value if it names the entry.
+    const FabricPreset *fabric        = find_fabric_preset(preset);
+    const auto          default_value = [&](const std::string &entry,
+                                   const std::string &value) -> std::string {
+      if (fabric != nullptr)
+        for (const auto &[name, preset_value] : fabric->values)
+          if (name == entry)
+            return preset_value;
+      return value;
+    };
     prm.enter_subsection("Material");
     prm.declare_entry(
+      "Preset",
+      preset,
+      Patterns::Selection(fabric_preset_names()),
+      "A fabric by name: its measured values become the defaults of the Material "
+      "entries it sets (each can still be set to override it; parameters.prm of a run "
+      "shows the values used)." +
+        fabric_preset_documentation());
+    prm.declare_entry(
       "Stiffness given as",
-      "E*h",
+      default_value("Stiffness given as", "E*h"),
       Patterns::Selection("E*h|E and thickness"),
       "How the membrane (stretch) stiffness is given: 'E*h' uses 'Stretch "
       "stiffness' directly (fabrics); 'E and thickness' uses Young's modulus "
-      "times thickness (engineering shells).");
-    prm.declare_entry(
-      "Stretch stiffness",
-      "100",
-      Patterns::Double(1e-12, 1e15),
-      "Membrane stiffness E*h in N/m (used when 'Stiffness given as = E*h').");
+      "times thickness (engineering shells; isotropic only).");
+    prm.declare_entry("Stretch stiffness",
+                      default_value("Stretch stiffness", "100"),
+                      Patterns::Double(1e-12, 1e15),
+                      "Membrane stiffness E*h in N/m (used when 'Stiffness given as = "
+                      "E*h'); orthotropic: along the warp, E_1 h.");
     prm.declare_entry("Young's modulus",
                       "1e6",
                       Patterns::Double(1e-12, 1e15),
@@ -35,11 +54,13 @@ namespace clothsim
                       "Shell thickness h in m (used when 'Stiffness given as = E and "
                       "thickness').");
     prm.declare_entry("Poisson ratio",
-                      "0.3",
+                      default_value("Poisson ratio", "0.3"),
                       Patterns::Double(0., 0.499),
-                      "Poisson's ratio ν (dimensionless), 0 <= ν < 0.5.");
+                      "Poisson's ratio ν (dimensionless), 0 <= ν < 0.5; orthotropic: "
+                      "ν_12, the weft's contraction per stretch along the warp (also "
+                      "the bending's, physics/sheet_stiffness.h).");
     prm.declare_entry("Areal density",
-                      "0.1",
+                      default_value("Areal density", "0.1"),
                       Patterns::Double(1e-12, 1e6),
                       "Mass per unit reference area ρ_A in kg/m².");
     prm.declare_entry(
@@ -50,18 +71,18 @@ namespace clothsim
       "or 'consistent' (the P1 Galerkin mass matrix).");
     prm.declare_entry(
       "Bending",
-      "none",
+      default_value("Bending", "none"),
       Patterns::Selection("none|E and thickness|rigidity"),
       "Bending stiffness (midedge-director shell, physics/bending.h): 'none' "
       "(a membrane; no bending term is assembled), 'E and thickness' (plate "
       "rigidity D = E h^3 / (12 (1 - nu^2)) from 'Young's modulus', 'Thickness' "
-      "and 'Poisson ratio'), or 'rigidity' ('Bending rigidity' given directly, "
-      "as measured for fabrics).");
+      "and 'Poisson ratio'; isotropic only), or 'rigidity' ('Bending rigidity' given "
+      "directly, as measured for fabrics).");
     prm.declare_entry("Bending rigidity",
-                      "1e-5",
+                      default_value("Bending rigidity", "1e-5"),
                       Patterns::Double(0., 1e15),
-                      "Bending rigidity D in N·m (= J), used when 'Bending = rigidity'. "
-                      "Fabrics: roughly 1e-6 to 1e-3.");
+                      "Bending rigidity D in N·m (= J), used when 'Bending = rigidity'; "
+                      "orthotropic: along the warp, D_1. Fabrics: roughly 1e-6 to 1e-3.");
     prm.declare_entry(
       "Director function",
       "angle",
@@ -71,6 +92,36 @@ namespace clothsim
       "onto its neighbour), or 'half tangent' (f = 2 tan(tilt/2): a barrier at pi, "
       "against a crease turning inside out). All agree for small tilts. With a "
       "barrier, Newton's line search is capped so that no tilt crosses it.");
+    prm.declare_entry(
+      "Anisotropy",
+      "isotropic",
+      Patterns::Selection("isotropic|orthotropic"),
+      "'isotropic': the same stiffness in every direction. 'orthotropic' (woven "
+      "cloth: warp and weft stiff, bias soft; physics/sheet_stiffness.h): 'Stretch "
+      "stiffness' and 'Bending rigidity' hold along the warp, the weft has its own, "
+      "and 'Shear stiffness' sets the bias; needs 'Stiffness given as = E*h' and "
+      "'Bending = none' or 'rigidity'.");
+    prm.declare_entry("Warp direction",
+                      "1, 0, 0",
+                      Patterns::List(Patterns::Double(-1e6, 1e6), 3, 3, ","),
+                      "Orthotropic: the warp (x, y, z; any length) in the reference "
+                      "configuration, projected onto each triangle's plane; it must not "
+                      "be normal to any triangle. The weft is perpendicular to it in the "
+                      "surface.");
+    prm.declare_entry("Weft stretch stiffness",
+                      "100",
+                      Patterns::Double(1e-12, 1e15),
+                      "Orthotropic: membrane stiffness E_2 h along the weft, N/m.");
+    prm.declare_entry("Shear stiffness",
+                      "38.46",
+                      Patterns::Double(1e-12, 1e15),
+                      "Orthotropic: in-plane shear stiffness G_12 h, N/m (isotropic "
+                      "value: E h / (2 (1 + nu)); woven cloth: far below it).");
+    prm.declare_entry("Weft bending rigidity",
+                      "1e-5",
+                      Patterns::Double(0., 1e15),
+                      "Orthotropic with 'Bending = rigidity': bending rigidity D_2 along "
+                      "the weft, N·m (twist: Huber's (1 - nu) sqrt(D_1 D_2) / 2).");
     prm.leave_subsection();
   }
 
@@ -78,7 +129,9 @@ namespace clothsim
   MaterialParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Material");
-    if (prm.get("Stiffness given as") == "E*h")
+    preset                  = prm.get("Preset");
+    const bool given_as_e_h = prm.get("Stiffness given as") == "E*h";
+    if (given_as_e_h)
       stretch_stiffness = prm.get_double("Stretch stiffness");
     else
       stretch_stiffness = prm.get_double("Young's modulus") * prm.get_double("Thickness");
@@ -96,7 +149,42 @@ namespace clothsim
                            (12. * (1. - poisson_ratio * poisson_ratio));
       }
     director_function = prm.get("Director function");
+
+    orthotropic                    = prm.get("Anisotropy") == "orthotropic";
+    weft_stretch_stiffness         = prm.get_double("Weft stretch stiffness");
+    shear_stiffness                = prm.get_double("Shear stiffness");
+    weft_bending_rigidity          = prm.get_double("Weft bending rigidity");
+    const std::vector<double> warp = Utilities::string_to_double(
+      Utilities::split_string_list(prm.get("Warp direction")));
+    for (unsigned int d = 0; d < 3; ++d)
+      warp_direction[d] = warp[d];
     prm.leave_subsection();
+
+    if (orthotropic)
+      {
+        if (!given_as_e_h)
+          throw InputError("",
+                           "Material/Stiffness given as",
+                           "an orthotropic sheet takes its stiffnesses in N/m: set "
+                           "'E*h' and give 'Stretch stiffness' (warp) and 'Weft stretch "
+                           "stiffness'");
+        if (bending_given_as == "E and thickness")
+          throw InputError("",
+                           "Material/Bending",
+                           "an orthotropic sheet takes its bending rigidities in N·m: "
+                           "set 'rigidity' and give 'Bending rigidity' (warp) and "
+                           "'Weft bending rigidity'");
+        if (warp_direction.norm() == 0.)
+          throw InputError("", "Material/Warp direction", "must not be zero");
+        const double nu = poisson_ratio;
+        if (nu * nu * weft_stretch_stiffness >= stretch_stiffness)
+          throw InputError("",
+                           "Material/Poisson ratio",
+                           "nu_12^2 must stay below 'Stretch stiffness' / 'Weft stretch "
+                           "stiffness' (k_warp/k_weft = " +
+                             std::to_string(stretch_stiffness / weft_stretch_stiffness) +
+                             "), or the membrane energy is not positive");
+      }
   }
 
 

@@ -1,5 +1,7 @@
 #include "physics/bending.h"
 
+#include "physics/sheet_stiffness.h"
+
 #include <Sacado.hpp>
 
 #include <cmath>
@@ -154,17 +156,19 @@ namespace clothsim::physics
     metric[1][1]                = a2 * a2;
     rest.inverse_metric         = invert(metric);
 
-    // C_kl = |T̄| D [ν tr(Q B_k) tr(Q B_l) + (1-ν) tr(Q B_k Q B_l)], Q = Ā⁻¹.
-    const double nu = material.poisson_ratio;
+    // C_kl = |T̄| C^abcd (B_k)_ab (B_l)_cd; isotropic: |T̄| D [ν tr(Q B_k) tr(Q B_l) +
+    // (1-ν) tr(Q B_k Q B_l)], Q = Ā⁻¹.
+    const Tensor<4, 2> C =
+      covariant_stiffness(bending_sheet_stiffness(material.rigidity,
+                                                  material.poisson_ratio,
+                                                  material.weft_rigidity),
+                          reference,
+                          rest.inverse_metric,
+                          material.warp_direction);
     for (unsigned int k = 0; k < 3; ++k)
       for (unsigned int l = 0; l < 3; ++l)
-        {
-          const Tensor<2, 2> QB_k = rest.inverse_metric * curvature_basis(k);
-          const Tensor<2, 2> QB_l = rest.inverse_metric * curvature_basis(l);
-          rest.stiffness[k][l] =
-            area * material.rigidity *
-            (nu * trace(QB_k) * trace(QB_l) + (1. - nu) * trace(QB_k * QB_l));
-        }
+        rest.stiffness[k][l] =
+          area * scalar_product(contract(C, curvature_basis(l)), curvature_basis(k));
     rest.rest_edge_curvature = edge_curvatures(material.director_function,
                                                reference,
                                                rest_directors,

@@ -29,7 +29,10 @@
 //   (b = Σ_i (2 δ_i / h_i) (a_α·μ_i)(a_β·μ_i) for f = id: the gradient of the
 //   Crouzeix–Raviart interpolant of the midedge normals)
 //   energy                    W = |T̄| D/2 [ ν (tr M)² + (1-ν) tr(M²) ],
-//                             M = Ā⁻¹ (b - B̄)  (curvature change, 1/m)
+//                             M = Ā⁻¹ (b - B̄)  (curvature change, 1/m);
+//                             orthotropic (warp and weft rigidities D_1, D_2; Huber's
+//                             plate, physics/sheet_stiffness.h): W = |T̄|/2 C^abcd
+//                             (b - B̄)_ab (b - B̄)_cd
 // with Ā, B̄ the same forms on the reference mesh with its rest directors (ψ̄ = 0 and r
 // on the bisector of the two rest normals, or the rest normal on a boundary edge), and D
 // the bending rigidity (E h³ / (12 (1-ν²)) for an elastic plate). Since b is linear in
@@ -74,9 +77,11 @@ namespace clothsim::physics
 
   struct BendingMaterial
   {
-    double           rigidity;      // D, N·m
+    double           rigidity;      // D, N·m (orthotropic: D_1, along the warp)
     double           poisson_ratio; // ν, 0 <= ν < 0.5
     DirectorFunction director_function;
+    double           weft_rigidity  = -1.;            // D_2, N·m; negative: isotropic
+    Tensor<1, 3>     warp_direction = Tensor<1, 3>(); // in space (orthotropic only)
   };
 
   // The three edges of one triangle as the triangle sees them; edge i is opposite vertex
@@ -101,7 +106,9 @@ namespace clothsim::physics
   using BendingVector = std::array<double, 12>;
   using BendingMatrix = std::array<std::array<double, 12>, 12>;
 
-  // Rest data from the reference positions and the rest directors (ψ̄ = 0).
+  // Rest data from the reference positions and the rest directors (ψ̄ = 0). Throws
+  // std::invalid_argument for an orthotropic material whose warp is normal to the
+  // triangle.
   BendingRestData
   bending_rest_data(const BendingMaterial   &material,
                     const TrianglePositions &reference,

@@ -29,7 +29,7 @@ namespace clothsim::physics
     tangents.resize(elements.size());
     std::array<double, 9> u_e;
     for (unsigned int e = 0; e < elements.size(); ++e)
-      membrane->projected_hessian(elements[e].reference,
+      membrane->projected_hessian(e,
                                   discretization.current_positions(elements[e], u_n, u_e),
                                   tangents[e]);
   }

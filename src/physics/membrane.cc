@@ -1,5 +1,7 @@
 #include "physics/membrane.h"
 
+#include "physics/sheet_stiffness.h"
+
 #include <cmath>
 
 namespace clothsim::physics
@@ -26,46 +28,23 @@ namespace clothsim::physics
       return basis;
     }
 
-    // Lamé-like coefficients per unit stretch stiffness: λ' = ν/(1-ν²), μ' = 1/(2(1+ν)).
-    struct Coefficients
-    {
-      double lambda;
-      double mu;
-    };
-
-    Coefficients
-    coefficients(const MembraneMaterial &material)
-    {
-      const double nu = material.poisson_ratio;
-      const double k  = material.stretch_stiffness;
-      return {k * nu / (1. - nu * nu), k / (2. * (1. + nu))};
-    }
-
-    // Green strain E (covariant), mixed M = Ā⁻¹ E, stress S (contravariant) and energy
-    // density.
+    // Green strain E (covariant), stress S = C:E (contravariant) and energy density.
     struct StrainState
     {
       Tensor<2, 2> strain;
       Tensor<2, 2> stress;
-      double       trace_m;
-      double       trace_m2;
       double       energy_density; // J/m²
     };
 
     StrainState
-    strain_state(const Coefficients     &c,
-                 const MembraneRestData &rest,
-                 const Tensor<2, 2>     &metric)
+    strain_state(const MembraneStiffness &C,
+                 const MembraneRestData  &rest,
+                 const Tensor<2, 2>      &metric)
     {
-      const Tensor<2, 2> &Q = rest.inverse_metric;
-      StrainState         s;
-      // E = (a - Ā)/2; tr(M) = Q:E, tr(M²) = (QEQ):E.
-      s.strain               = 0.5 * (metric - rest.metric);
-      const Tensor<2, 2> QEQ = Q * s.strain * Q;
-      s.trace_m              = scalar_product(Q, s.strain);
-      s.trace_m2             = scalar_product(QEQ, s.strain);
-      s.energy_density       = 0.5 * c.lambda * s.trace_m * s.trace_m + c.mu * s.trace_m2;
-      s.stress               = c.lambda * s.trace_m * Q + 2. * c.mu * QEQ;
+      StrainState s;
+      s.strain         = 0.5 * (metric - rest.metric); // E = (a - Ā)/2
+      s.stress         = contract(C, s.strain);
+      s.energy_density = 0.5 * scalar_product(s.stress, s.strain);
       return s;
     }
 
@@ -108,19 +87,34 @@ namespace clothsim::physics
   }
 
 
+  MembraneStiffness
+  membrane_stiffness(const MembraneMaterial  &material,
+                     const TrianglePositions &reference,
+                     const MembraneRestData  &rest)
+  {
+    return covariant_stiffness(membrane_sheet_stiffness(material.stretch_stiffness,
+                                                        material.poisson_ratio,
+                                                        material.weft_stretch_stiffness,
+                                                        material.shear_stiffness),
+                               reference,
+                               rest.inverse_metric,
+                               material.warp_direction);
+  }
+
+
   double
-  membrane_energy(const MembraneMaterial  &material,
+  membrane_energy(const MembraneStiffness &stiffness,
                   const MembraneRestData  &rest,
                   const TrianglePositions &current)
   {
     const EdgeBasis   basis = edge_basis(current);
-    const StrainState s     = strain_state(coefficients(material), rest, basis.metric);
+    const StrainState s     = strain_state(stiffness, rest, basis.metric);
     return rest.area * s.energy_density;
   }
 
 
   double
-  membrane_energy_gradient_hessian(const MembraneMaterial  &material,
+  membrane_energy_gradient_hessian(const MembraneStiffness &stiffness,
                                    const MembraneRestData  &rest,
                                    const TrianglePositions &current,
                                    const double             stress_floor,
@@ -128,11 +122,10 @@ namespace clothsim::physics
                                    ElementMatrix           *hessian,
                                    const TrianglePositions *linearised_from)
   {
-    const Coefficients  c     = coefficients(material);
-    const Tensor<2, 2> &Q     = rest.inverse_metric;
-    const EdgeBasis     basis = edge_basis(current);
-    const StrainState   s     = strain_state(c, rest, basis.metric);
-    const double        A     = rest.area;
+    const MembraneStiffness &C     = stiffness;
+    const EdgeBasis          basis = edge_basis(current);
+    const StrainState        s     = strain_state(C, rest, basis.metric);
+    const double             A     = rest.area;
 
     // f_a = dW/da_a = |T̄| S^ab a_b; x1 and x2 get f_1, f_2, x0 gets -(f_1 + f_2).
     Tensor<1, 3> f[2];
@@ -157,7 +150,7 @@ namespace clothsim::physics
             for (unsigned int a = 0; a < 2; ++a)
               for (unsigned int b = 0; b < 2; ++b)
                 metric[a][b] -= (basis.a[a] - from.a[a]) * (basis.a[b] - from.a[b]);
-            S = strain_state(c, rest, metric).stress;
+            S = strain_state(C, rest, metric).stress;
           }
         const Tensor<2, 2> S_geo =
           std::isinf(stress_floor) ? S : clamp_below(S, -stress_floor);
@@ -171,9 +164,7 @@ namespace clothsim::physics
               for (unsigned int b = 0; b < 2; ++b)
                 for (unsigned int d = 0; d < 2; ++d)
                   {
-                    const double C_abcd =
-                      c.lambda * Q[a][b] * Q[cc][d] +
-                      c.mu * (Q[a][cc] * Q[b][d] + Q[a][d] * Q[b][cc]);
+                    const double C_abcd = C[a][b][cc][d];
                     if (C_abcd != 0.)
                       block += C_abcd * outer_product(basis.a[b], basis.a[d]);
                   }
@@ -203,16 +194,19 @@ namespace clothsim::physics
 
 
   MembraneStrainStress
-  membrane_strain_stress(const MembraneMaterial  &material,
+  membrane_strain_stress(const MembraneStiffness &stiffness,
                          const MembraneRestData  &rest,
                          const TrianglePositions &current)
   {
     const EdgeBasis   basis = edge_basis(current);
-    const StrainState s     = strain_state(coefficients(material), rest, basis.metric);
+    const StrainState s     = strain_state(stiffness, rest, basis.metric);
     // Mixed stress S Ā has the principal stresses as eigenvalues.
     const Tensor<2, 2>   mixed_stress = s.stress * rest.metric;
     MembraneStrainStress out;
-    out.green_strain_norm = std::sqrt(std::max(s.trace_m2, 0.));
+    // tr(M²) = (Ā⁻¹ E Ā⁻¹):E.
+    const Tensor<2, 2> &Q        = rest.inverse_metric;
+    const double        trace_m2 = scalar_product(Q * s.strain * Q, s.strain);
+    out.green_strain_norm        = std::sqrt(std::max(trace_m2, 0.));
     out.stress_norm =
       std::sqrt(std::max(scalar_product(mixed_stress, transpose(mixed_stress)), 0.));
     out.area_ratio =

@@ -1,7 +1,8 @@
 #pragma once
 
-// Membrane energy of a thin sheet: isotropic plane-stress St. Venant–Kirchhoff on the
-// Green strain of the surface, on linear (3-node) triangles. Pure functions: rest data +
+// Membrane energy of a thin sheet: plane-stress St. Venant–Kirchhoff (isotropic or
+// orthotropic, physics/sheet_stiffness.h) on the Green strain of the surface, on linear
+// (3-node) triangles. Pure functions: rest data +
 // current vertex positions -> energy, gradient, Hessian. Assembly and constraints live
 // elsewhere.
 //
@@ -10,28 +11,29 @@
 //   vertices) first fundamental form a_ab = a_a . a_b Green strain           E_ab = (a_ab
 //   - Ā_ab) / 2,   M = Ā⁻¹ E  (mixed, eigenvalues are the
 //                                                      principal Green strains)
-//   energy                 W = |T̄| k [ λ'/2 (tr M)² + μ' tr(M²) ],  λ' = ν/(1-ν²), μ' =
-//   1/(2(1+ν))
+//   energy                 W = |T̄|/2 C^abcd E_ab E_cd, isotropic:
+//                          W = |T̄| k [ λ'/2 (tr M)² + μ' tr(M²) ],  λ' = ν/(1-ν²),
+//                          μ' = 1/(2(1+ν)), C^abcd = k [ λ' Q^ab Q^cd + μ' (Q^ac Q^bd +
+//                          Q^ad Q^bc) ], Q = Ā⁻¹
 // with k = E h the stretch stiffness in N/m (Ciarlet, "Mathematical Elasticity III", ch.
-// 4; the membrane part of the Koiter energy, Terzopoulos et al. 1987's ||G - G⁰||²).
+// 4; the membrane part of the Koiter energy, Terzopoulos et al. 1987's ||G - G⁰||²); an
+// orthotropic sheet has its own C per triangle (physics/sheet_stiffness.h), precomputed.
 //   2nd Piola-Kirchhoff stress resultant (contravariant, N/m)
-//                          S = k [ λ' tr(M) Ā⁻¹ + 2 μ' Ā⁻¹ E Ā⁻¹ ]
+//                          S^ab = C^abcd E_cd
 //   gradient               dW/da_a = |T̄| S^ab a_b
-//   Hessian                d²W/da_a da_c = |T̄| [ S^ac I + C^abcd a_b ⊗ a_d ],
-//                          C^abcd = k [ λ' Q^ab Q^cd + μ' (Q^ac Q^bd + Q^ad Q^bc) ],  Q =
-//                          Ā⁻¹.
-// The material part (C) is positive semi-definite for 0 <= ν < 1/2; the geometric part
-// S^ac I is indefinite under compression. The tangent can clamp the eigenvalues of the
-// matrix S^ac from below at -s_min (s_min >= 0, N/m): s_min = 0 gives a positive
-// semi-definite element Hessian (a tension-field tangent), s_min = ∞ the exact one. Since
-// the geometric block is |T̄| (B S Bᵀ) ⊗ I with B the 3x2 vertex weights (|B|² = 3),
-// clamping at -s_min = -m_min / (3 |T̄|) keeps geometric + m_min I positive semi-definite:
-// a time step's mass term pays for the compression, and Newton stays exact wherever it
-// can (see ClothModel).
-// Mixed-stress tangent (the "mixed integration point" Newton of Magisano, Leonetti &
-// Garcea, Int. J. Numer. Meth. Eng. 109, 2017): Newton on the mixed form (x, S) with S
-// eliminated per element takes the residual at x but the geometric stiffness from the
-// stress of the strain linearised from the previous linearisation point x_p,
+//   Hessian                d²W/da_a da_c = |T̄| [ S^ac I + C^abcd a_b ⊗ a_d ].
+// The material part (C) is positive semi-definite for a positive definite law; the
+// geometric part S^ac I is indefinite under compression. The tangent can clamp the
+// eigenvalues of the matrix S^ac from below at -s_min (s_min >= 0, N/m): s_min = 0 gives
+// a positive semi-definite element Hessian (a tension-field tangent), s_min = ∞ the exact
+// one. Since the geometric block is |T̄| (B S Bᵀ) ⊗ I with B the 3x2 vertex weights (|B|²
+// = 3), clamping at -s_min = -m_min / (3 |T̄|) keeps geometric + m_min I positive
+// semi-definite: a time step's mass term pays for the compression, and Newton stays exact
+// wherever it can (see ClothModel). Mixed-stress tangent (the "mixed integration point"
+// Newton of Magisano, Leonetti & Garcea, Int. J. Numer. Meth. Eng. 109, 2017): Newton on
+// the mixed form (x, S) with S eliminated per element takes the residual at x but the
+// geometric stiffness from the stress of the strain linearised from the previous
+// linearisation point x_p,
 //   E_lin = E(x) - ½ Δa_a·Δa_b,   Δa = a(x) - a(x_p)   (E is quadratic in a).
 // A stiff membrane turning within an iteration no longer stiffens the tangent with the
 // spurious stretch of the linearised rotation, and Newton needs fewer iterations.
@@ -45,12 +47,20 @@ namespace clothsim::physics
 {
   using namespace dealii;
 
-  // Isotropic membrane material.
+  // Membrane material: isotropic (k, ν), or orthotropic (k_1 = k along the warp, k_2
+  // along the weft, shear g, ν_12) when the weft or shear stiffness is set.
   struct MembraneMaterial
   {
-    double stretch_stiffness; // k = E h, N/m
-    double poisson_ratio;     // ν, dimensionless, 0 <= ν < 0.5
+    double       stretch_stiffness;          // k = E h (orthotropic: k_1), N/m
+    double       poisson_ratio;              // ν (orthotropic: ν_12), dimensionless
+    double       weft_stretch_stiffness = 0; // k_2 = E_2 h, N/m; 0 and g 0: isotropic
+    double       shear_stiffness        = 0; // g = G_12 h, N/m
+    Tensor<1, 3> warp_direction         = Tensor<1, 3>(); // in space (orthotropic only)
   };
+
+  // C^abcd of the material for one triangle (N/m⁵; physics/sheet_stiffness.h): what
+  // the kernels below take as `stiffness`.
+  using MembraneStiffness = Tensor<4, 2>;
 
   // What the rest state of one triangle contributes, computed once.
   struct MembraneRestData
@@ -68,9 +78,16 @@ namespace clothsim::physics
   MembraneRestData
   membrane_rest_data(const TrianglePositions &reference);
 
+  // The material's C^abcd on one reference triangle (throws std::invalid_argument for
+  // an orthotropic material whose warp is normal to the triangle).
+  MembraneStiffness
+  membrane_stiffness(const MembraneMaterial  &material,
+                     const TrianglePositions &reference,
+                     const MembraneRestData  &rest);
+
   // Energy W (J) of one triangle.
   double
-  membrane_energy(const MembraneMaterial  &material,
+  membrane_energy(const MembraneStiffness &stiffness,
                   const MembraneRestData  &rest,
                   const TrianglePositions &current);
 
@@ -80,7 +97,7 @@ namespace clothsim::physics
   // exact Hessian); with `linearised_from` (x_p), the S of the strain linearised from
   // there (the mixed-stress tangent above; x_p = current: the Hessian).
   double
-  membrane_energy_gradient_hessian(const MembraneMaterial  &material,
+  membrane_energy_gradient_hessian(const MembraneStiffness &stiffness,
                                    const MembraneRestData  &rest,
                                    const TrianglePositions &current,
                                    const double             stress_floor,
@@ -97,7 +114,7 @@ namespace clothsim::physics
   };
 
   MembraneStrainStress
-  membrane_strain_stress(const MembraneMaterial  &material,
+  membrane_strain_stress(const MembraneStiffness &stiffness,
                          const MembraneRestData  &rest,
                          const TrianglePositions &current);
 } // namespace clothsim::physics

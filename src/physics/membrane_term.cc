@@ -4,16 +4,22 @@
 
 namespace clothsim::physics
 {
-  MembraneTerm::MembraneTerm(const MembraneMaterial &material,
-                             const double            areal_density,
-                             const bool              lumped_mass,
-                             const double            mass_proportional_damping)
+  MembraneTerm::MembraneTerm(const mesh::Discretization &discretization,
+                             const MembraneMaterial     &material,
+                             const double                areal_density,
+                             const bool                  lumped_mass,
+                             const double                mass_proportional_damping)
     : ElementTerm("membrane", TermKind::elastic)
-    , material(material)
     , areal_density(areal_density)
     , lumped_mass(lumped_mass)
     , mass_proportional_damping(mass_proportional_damping)
-  {}
+  {
+    for (const auto &element : discretization.elements())
+      {
+        rest.push_back(membrane_rest_data(element.reference));
+        stiffness.push_back(membrane_stiffness(material, element.reference, rest.back()));
+      }
+  }
 
 
   void
@@ -26,7 +32,7 @@ namespace clothsim::physics
     const MembraneRestData &rest = element.rest;
     if (gradient == nullptr && hessian == nullptr)
       {
-        value += membrane_energy(material, rest, element.x);
+        value += membrane_energy(stiffness[element.index], rest, element.x);
         return;
       }
 
@@ -37,7 +43,7 @@ namespace clothsim::physics
                                    : std::numeric_limits<double>::infinity();
     ElementVector g;
     ElementMatrix H;
-    value += membrane_energy_gradient_hessian(material,
+    value += membrane_energy_gradient_hessian(stiffness[element.index],
                                               rest,
                                               element.x,
                                               stress_floor,
@@ -58,18 +64,18 @@ namespace clothsim::physics
   double
   MembraneTerm::energy(const ElementState &element, const std::array<double, 9> &) const
   {
-    return membrane_energy(material, element.rest, element.x);
+    return membrane_energy(stiffness[element.index], element.rest, element.x);
   }
 
 
   void
-  MembraneTerm::projected_hessian(const TrianglePositions &reference,
+  MembraneTerm::projected_hessian(const unsigned int       element,
                                   const TrianglePositions &x,
                                   ElementMatrix           &hessian) const
   {
     ElementVector gradient;
-    membrane_energy_gradient_hessian(material,
-                                     membrane_rest_data(reference),
+    membrane_energy_gradient_hessian(stiffness[element],
+                                     rest[element],
                                      x,
                                      /*stress_floor=*/0.,
                                      gradient,
@@ -84,11 +90,12 @@ namespace clothsim::physics
   {
     CellField             stress{"membrane_stress", {}};
     std::array<double, 9> u_e;
-    for (const auto &element : discretization.elements())
+    const auto           &elements = discretization.elements();
+    for (unsigned int e = 0; e < elements.size(); ++e)
       stress.values.push_back(
-        membrane_strain_stress(material,
-                               membrane_rest_data(element.reference),
-                               discretization.current_positions(element, u, u_e))
+        membrane_strain_stress(stiffness[e],
+                               rest[e],
+                               discretization.current_positions(elements[e], u, u_e))
           .stress_norm);
     fields.push_back(stress);
   }

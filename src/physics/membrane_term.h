@@ -1,12 +1,14 @@
 #pragma once
 
 // The membrane term: Σ_T W_T(x), the plane-stress St. Venant–Kirchhoff energy of the
-// Green strain on every triangle (kernels in physics/membrane.h). Its projected tangent
-// keeps the compression of the geometric stiffness down to what the element's smallest
-// mass eigenvalue m_min pays for in this step (ρ|T̄|/3 lumped, ρ|T̄|/12 consistent, times
-// the step's mass weight w_i + w_d α): s_min = weight m_min / (3|T̄|) = weight ρ/9
-// (lumped) or weight ρ/36 (consistent), so that the element Hessian plus its mass term
-// stays positive semi-definite (membrane.h) and Newton stays exact wherever it can.
+// Green strain on every triangle (kernels in physics/membrane.h), with each triangle's
+// constitutive tensor C^abcd (physics/sheet_stiffness.h) computed once. Its projected
+// tangent keeps the compression of the geometric stiffness down to what the element's
+// smallest mass eigenvalue m_min pays for in this step (ρ|T̄|/3 lumped, ρ|T̄|/12
+// consistent, times the step's mass weight w_i + w_d α): s_min = weight m_min / (3|T̄|) =
+// weight ρ/9 (lumped) or weight ρ/36 (consistent), so that the element Hessian plus its
+// mass term stays positive semi-definite (membrane.h) and Newton stays exact wherever it
+// can.
 
 #include "physics/model.h"
 
@@ -16,10 +18,13 @@ namespace clothsim::physics
   {
   public:
     // ρ (kg/m²), the lumping and α (1/s) set the stress floor of the projected tangent.
-    MembraneTerm(const MembraneMaterial &material,
-                 const double            areal_density,
-                 const bool              lumped_mass,
-                 const double            mass_proportional_damping);
+    // Throws std::invalid_argument for an orthotropic material whose warp is normal to
+    // a triangle.
+    MembraneTerm(const mesh::Discretization &discretization,
+                 const MembraneMaterial     &material,
+                 const double                areal_density,
+                 const bool                  lumped_mass,
+                 const double                mass_proportional_damping);
 
 
     void
@@ -32,10 +37,10 @@ namespace clothsim::physics
     double
     energy(const ElementState &element, const std::array<double, 9> &v_e) const override;
 
-    // The element's projected (tension-field) Hessian at positions x, N/m: the
+    // Element `element`'s projected (tension-field) Hessian at positions x, N/m: the
     // stiffness of stiffness-proportional damping.
     void
-    projected_hessian(const TrianglePositions &reference,
+    projected_hessian(const unsigned int       element,
                       const TrianglePositions &x,
                       ElementMatrix           &hessian) const;
 
@@ -46,9 +51,10 @@ namespace clothsim::physics
                     std::vector<CellField>     &fields) const override;
 
   private:
-    const MembraneMaterial material;
-    const double           areal_density;
-    const bool             lumped_mass;
-    const double           mass_proportional_damping;
+    const double                   areal_density;
+    const bool                     lumped_mass;
+    const double                   mass_proportional_damping;
+    std::vector<MembraneRestData>  rest;      // per element of the discretization
+    std::vector<MembraneStiffness> stiffness; // C^abcd per element
   };
 } // namespace clothsim::physics

@@ -508,10 +508,10 @@ namespace clothsim::physics
   Model::area_ratio_range(const VectorType &u) const
   {
     // The strain measures' area ratio needs no material.
-    const MembraneMaterial geometry{1., 0.};
-    std::array<double, 9>  u_e;
-    double                 smallest = std::numeric_limits<double>::max(), largest = 0.;
-    const auto            &elements = discretization.elements();
+    const MembraneStiffness geometry;
+    std::array<double, 9>   u_e;
+    double                  smallest = std::numeric_limits<double>::max(), largest = 0.;
+    const auto             &elements = discretization.elements();
     for (unsigned int e = 0; e < elements.size(); ++e)
       {
         const TrianglePositions x = discretization.current_positions(elements[e], u, u_e);
@@ -531,10 +531,10 @@ namespace clothsim::physics
   std::vector<CellField>
   Model::cell_fields(const VectorType &u) const
   {
-    const MembraneMaterial geometry{1., 0.};
-    std::vector<CellField> fields(1, CellField{"green_strain", {}});
-    std::array<double, 9>  u_e;
-    const auto            &elements = discretization.elements();
+    const MembraneStiffness geometry; // the Green strain's norm needs no material
+    std::vector<CellField>  fields(1, CellField{"green_strain", {}});
+    std::array<double, 9>   u_e;
+    const auto             &elements = discretization.elements();
     for (unsigned int e = 0; e < elements.size(); ++e)
       {
         const TrianglePositions x = discretization.current_positions(elements[e], u, u_e);
