@@ -15,6 +15,7 @@
 #include "physics/pressure_term.h"
 #include "physics/spring_terms.h"
 #include "physics/strain_limit.h"
+#include "scene/air.h"
 #include "scene/group_loads.h"
 #include "scene/obstacles.h"
 #include "solvers/near_null_space.h"
@@ -130,6 +131,9 @@ namespace clothsim
     if (dynamic && (alpha > 0. || (fem && beta > 0.)))
       model->add(std::make_unique<physics::RayleighDamping>(
         discretization, alpha, beta, rho, material.lumped_mass, membrane));
+    // Air drag and wind (io/parameters.cc refuses it with a step it does not fit).
+    if (dynamic && parameters.air.density > 0.)
+      model->add(make_air_drag(parameters.air, parameter_file, discretization));
     // The pressure cones' apex: the reference surface's centroid.
     if (parameters.loads.pressure != 0.)
       model->add(
