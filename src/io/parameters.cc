@@ -166,6 +166,7 @@ namespace clothsim
     MassSpringParameters::declare_parameters(prm);
     DampingParameters::declare_parameters(prm);
     LoadParameters::declare_parameters(prm);
+    AirParameters::declare_parameters(prm);
     ConstraintParameters::declare_parameters(prm);
     TimeParameters::declare_parameters(prm);
     NonlinearSolverParameters::declare_parameters(prm);
@@ -182,6 +183,7 @@ namespace clothsim
     mass_spring.parse_parameters(prm);
     damping.parse_parameters(prm);
     loads.parse_parameters(prm);
+    air.parse_parameters(prm);
     constraints.parse_parameters(prm);
     time.parse_parameters(prm);
     nonlinear_solver.parse_parameters(prm);
@@ -388,6 +390,18 @@ namespace clothsim
                        "Mass spring/Strain limit",
                        "the strain limit corrects dynamic steps of the mass-spring "
                        "model only; set it to 0");
+    if (parameters.air.density > 0. &&
+        (integrator == Integrator::static_load_steps || is_explicit(integrator) ||
+         integrator == Integrator::average_vector_field))
+      throw InputError(
+        file,
+        "Air/Density",
+        "air drag acts on the velocity of an implicit step, its "
+        "geometry lagged at the step's start (the explicit steps have "
+        "no such state, static steps no velocity, and the average "
+        "vector field takes the drag at velocities from 0 to twice the "
+        "step's: 4/3 of it in still air): use 'backward euler', 'bdf2' or 'implicit "
+        "midpoint', or set the density to 0");
     for (const Probe &probe : input.parameters.output.probes)
       if (probe.name.empty() || probe.name.find(',') != std::string::npos)
         throw InputError(file,

@@ -115,6 +115,20 @@ namespace clothsim
     parse_parameters(ParameterHandler &prm);
   };
 
+  // Air drag and wind (physics/air_drag.h); no air term while the density is 0.
+  struct AirParameters
+  {
+    double      density;         // ρ_air, kg/m³
+    double      normal_drag;     // C_n, dimensionless
+    double      tangential_drag; // C_t, dimensionless
+    std::string wind; // FunctionParser expressions 'wx; wy; wz' in m/s of (x, y, z, t)
+
+    static void
+    declare_parameters(ParameterHandler &prm);
+    void
+    parse_parameters(ParameterHandler &prm);
+  };
+
   // A mesh group whose vertices follow the pinned displacement in the given components.
   struct PinnedGroup
   {
@@ -308,6 +322,7 @@ namespace clothsim
     MassSpringParameters      mass_spring;
     DampingParameters         damping;
     LoadParameters            loads;
+    AirParameters             air;
     ConstraintParameters      constraints;
     TimeParameters            time;
     NonlinearSolverParameters nonlinear_solver;

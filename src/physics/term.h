@@ -6,6 +6,8 @@
 //        + W_membrane(u) + W_bending(u) + W_springs(u)   elastic terms
 //        - λ f_gᵀ u + λ Φ_p(u) - λ f_extᵀ u              gravity, pressure, loads
 //        + w_d/2 (u - u_n)ᵀ (α M + β K_n) (u - u_n)      Rayleigh damping (dissipative)
+//        + Σ_T ψ_T(w_d (ū_T - ū_n,T) - w) / w_d          air drag (dissipative;
+//                                                         physics/air_drag.h)
 // Each term gives its value, gradient and Hessian (exact, or projected to positive
 // semi-definite), and its energy at a state (u, v) for the run's energy budget. Element
 // terms are sums over triangles and share one cell loop (physics/model.h); other terms

@@ -34,49 +34,48 @@ namespace clothsim
       return known.empty() ? "none" : known;
     }
 
-    // An expression that is inf or NaN at t = 0 would only surface as a failed first
-    // step: evaluate `function` at each (component, vertex) of `samples` and throw an
-    // InputError naming `entry`, the component and a vertex where it is not finite (the
-    // first by component, then position: the same for any number of ranks). Collective.
-    void
-    check_finite(const FunctionParser<3>                              &function,
-                 const std::vector<std::pair<unsigned int, Point<3>>> &samples,
-                 const MPI_Comm                                        communicator,
-                 const std::string                                    &parameter_file,
-                 const std::string                                    &entry)
-    {
-      // component (3: none), vertex x, y, z, value
-      std::array<double, 5> first   = {{3., 0., 0., 0., 0.}};
-      const auto            earlier = [](const std::array<double, 5> &a,
-                              const std::array<double, 5> &b) {
-        if (a[0] != b[0])
-          return a[0] < b[0];
-        return mesh::precedes(Point<3>(a[1], a[2], a[3]), Point<3>(b[1], b[2], b[3]));
-      };
-      for (const auto &[component, vertex] : samples)
-        {
-          const double                value  = function.value(vertex, component);
-          const std::array<double, 5> sample = {
-            {double(component), vertex[0], vertex[1], vertex[2], value}};
-          if (!std::isfinite(value) && earlier(sample, first))
-            first = sample;
-        }
-      for (const auto &sample : Utilities::MPI::all_gather(communicator, first))
-        if (earlier(sample, first))
-          first = sample;
-      if (first[0] == 3.)
-        return;
-
-      const unsigned int component   = first[0];
-      const auto         expressions = function.get_expressions();
-      std::ostringstream message;
-      message << "'" << expressions[component] << "' (component "
-              << "xyz"[component] << ") is " << first[4] << " at the vertex (" << first[1]
-              << ", " << first[2] << ", " << first[3]
-              << ") at t = 0; expected a finite value at every vertex";
-      throw InputError(parameter_file, entry, message.str());
-    }
   } // namespace
+
+
+  void
+  check_finite(const FunctionParser<3>                              &function,
+               const std::vector<std::pair<unsigned int, Point<3>>> &samples,
+               const MPI_Comm                                        communicator,
+               const std::string                                    &parameter_file,
+               const std::string                                    &entry,
+               const std::string                                    &point_name)
+  {
+    // component (3: none), vertex x, y, z, value
+    std::array<double, 5> first   = {{3., 0., 0., 0., 0.}};
+    const auto            earlier = [](const std::array<double, 5> &a,
+                            const std::array<double, 5> &b) {
+      if (a[0] != b[0])
+        return a[0] < b[0];
+      return mesh::precedes(Point<3>(a[1], a[2], a[3]), Point<3>(b[1], b[2], b[3]));
+    };
+    for (const auto &[component, vertex] : samples)
+      {
+        const double                value  = function.value(vertex, component);
+        const std::array<double, 5> sample = {
+          {double(component), vertex[0], vertex[1], vertex[2], value}};
+        if (!std::isfinite(value) && earlier(sample, first))
+          first = sample;
+      }
+    for (const auto &sample : Utilities::MPI::all_gather(communicator, first))
+      if (earlier(sample, first))
+        first = sample;
+    if (first[0] == 3.)
+      return;
+
+    const unsigned int component   = first[0];
+    const auto         expressions = function.get_expressions();
+    std::ostringstream message;
+    message << "'" << expressions[component] << "' (component "
+            << "xyz"[component] << ") is " << first[4] << " at the " << point_name << " ("
+            << first[1] << ", " << first[2] << ", " << first[3]
+            << ") at t = 0; expected a finite value at every " << point_name;
+    throw InputError(parameter_file, entry, message.str());
+  }
 
 
   BoundaryConditions::BoundaryConditions(const mesh::Discretization &discretization,

@@ -90,4 +90,17 @@ namespace clothsim
                         const bool         time_dependent,
                         const std::string &parameter_file,
                         const std::string &entry);
+
+  // An expression that is inf or NaN at t = 0 would only surface as a failed first
+  // step: evaluates `function` (at its time as set) at each (component, point) of
+  // `samples` and throws an InputError naming `entry`, the component and a point where
+  // it is not finite (the first by component, then position: the same for any number
+  // of ranks); `point_name` says what the points are ("vertex"). Collective.
+  void
+  check_finite(const FunctionParser<3>                              &function,
+               const std::vector<std::pair<unsigned int, Point<3>>> &samples,
+               const MPI_Comm                                        communicator,
+               const std::string                                    &parameter_file,
+               const std::string                                    &entry,
+               const std::string &point_name = "vertex");
 } // namespace clothsim

@@ -13,6 +13,7 @@
 #include "physics/membrane_term.h"
 #include "physics/pressure_term.h"
 #include "physics/spring_terms.h"
+#include "scene/air.h"
 #include "scene/cloth_model.h"
 #include "scene/group_loads.h"
 #include "scene/obstacles.h"
@@ -89,6 +90,9 @@ namespace clothsim
     if (dynamic && (alpha > 0. || (fem && beta > 0.)))
       model->add(std::make_unique<physics::RayleighDamping>(
         discretization, alpha, beta, rho, material.lumped_mass, membrane));
+    // Air drag and wind (io/parameters.cc refuses it with a step it does not fit).
+    if (dynamic && parameters.air.density > 0.)
+      model->add(make_air_drag(parameters.air, parameter_file, discretization));
     // The pressure cones' apex: the reference surface's centroid.
     if (parameters.loads.pressure != 0.)
       model->add(
