@@ -10,14 +10,16 @@ namespace clothsim::physics
                              const bool                  lumped_mass,
                              const double                mass_proportional_damping)
     : ElementTerm("membrane", TermKind::elastic)
+    , discretization(discretization)
     , areal_density(areal_density)
     , lumped_mass(lumped_mass)
     , mass_proportional_damping(mass_proportional_damping)
   {
     for (const auto &element : discretization.elements())
       {
-        rest.push_back(membrane_rest_data(element.reference));
-        stiffness.push_back(membrane_stiffness(material, element.reference, rest.back()));
+        stiffness.push_back(membrane_stiffness(material,
+                                               element.reference,
+                                               membrane_rest_data(element.reference)));
       }
   }
 
@@ -75,7 +77,8 @@ namespace clothsim::physics
   {
     ElementVector gradient;
     membrane_energy_gradient_hessian(stiffness[element],
-                                     rest[element],
+                                     membrane_rest_data(
+                                       discretization.elements()[element].reference),
                                      x,
                                      /*stress_floor=*/0.,
                                      gradient,
@@ -94,7 +97,7 @@ namespace clothsim::physics
     for (unsigned int e = 0; e < elements.size(); ++e)
       stress.values.push_back(
         membrane_strain_stress(stiffness[e],
-                               rest[e],
+                               membrane_rest_data(elements[e].reference),
                                discretization.current_positions(elements[e], u, u_e))
           .stress_norm);
     fields.push_back(stress);

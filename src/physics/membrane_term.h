@@ -51,10 +51,10 @@ namespace clothsim::physics
                     std::vector<CellField>     &fields) const override;
 
   private:
+    const mesh::Discretization    &discretization;
     const double                   areal_density;
     const bool                     lumped_mass;
     const double                   mass_proportional_damping;
-    std::vector<MembraneRestData>  rest;      // per element of the discretization
     std::vector<MembraneStiffness> stiffness; // C^abcd per element
   };
 } // namespace clothsim::physics
