@@ -14,6 +14,7 @@
 #include "io/output_file.h"
 #include "io/output_writer.h"
 #include "io/parameters.h"
+#include "io/provenance.h"
 #include "scene/scene.h"
 #include "time/explicit_stepper.h"
 #include "time/interruption.h"
@@ -148,6 +149,7 @@ namespace clothsim
     const bool         is_root      = Utilities::MPI::this_mpi_process(communicator) == 0;
     ConditionalOStream pcout(std::cout, is_root);
 
+    io::record_invocation(argc, argv);
     install_interruption_handlers(is_root);
     // A file-size limit (ulimit -f) then fails the write with EFBIG, reported like a full
     // disk, instead of killing the process with SIGXFSZ.
@@ -160,10 +162,15 @@ namespace clothsim
             pcout << usage();
             return 0;
           }
+        if (command_line.action == CommandLine::Action::version)
+          {
+            pcout << io::version_line() << "\n" << io::libraries_line() << std::endl;
+            return 0;
+          }
         if (command_line.action == CommandLine::Action::print_parameters)
           {
             if (is_root)
-              print_parameter_reference(std::cout);
+              print_parameter_reference(std::cout, command_line.parameters_as_json);
             return 0;
           }
 

@@ -19,8 +19,15 @@ namespace clothsim
         };
         if (argument == "--help" || argument == "-h")
           command_line.action = CommandLine::Action::help;
+        else if (argument == "--version")
+          command_line.action = CommandLine::Action::version;
         else if (argument == "--print-parameters")
-          command_line.action = CommandLine::Action::print_parameters;
+          {
+            command_line.action = CommandLine::Action::print_parameters;
+            if (i + 1 < argc && (std::string(argv[i + 1]) == "json" ||
+                                 std::string(argv[i + 1]) == "text"))
+              command_line.parameters_as_json = std::string(argv[++i]) == "json";
+          }
         else if (argument == "--compare")
           command_line.action = CommandLine::Action::compare;
         else if (argument == "--convergence")
@@ -121,8 +128,14 @@ namespace clothsim
            "      at the end (m). Writes DIR/pareto.csv and DIR/pareto.png (runtime\n"
            "      against error, Pareto front marked) and prints the fastest setting\n"
            "      for each error level.\n"
-           "  clothsim --print-parameters\n"
-           "      print every parameter with its default, allowed values and unit.\n"
+           "  clothsim --print-parameters [json]\n"
+           "      print every parameter with its default, allowed values and unit\n"
+           "      (with json: one JSON object, sections holding entries, each entry\n"
+           "      {\"default\", \"allowed\", \"documentation\"}).\n"
+           "  clothsim --version\n"
+           "      clothsim's version and git revision, and the versions of deal.II,\n"
+           "      Trilinos, MUMPS, gmsh and MPI it was built with (every run's log and\n"
+           "      parameters.prm start with them).\n"
            "  clothsim --help\n"
            "      this text.\n"
            "\n"

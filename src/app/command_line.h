@@ -24,13 +24,15 @@ namespace clothsim
       run,
       print_parameters,
       help,
+      version,     // clothsim's version and git revision, the libraries' versions
       compare,     // the scene with both models side by side
       convergence, // mesh refinement and/or step halving study
       sweep        // speed-accuracy sweep over a grid of settings
     };
-    Action                   action = Action::run;
-    std::string              parameter_file;        // empty: params/default.prm
-    std::vector<std::string> overrides;             // --set: every run
+    Action                   action             = Action::run;
+    bool                     parameters_as_json = false; // --print-parameters json
+    std::string              parameter_file;             // empty: params/default.prm
+    std::vector<std::string> overrides;                  // --set: every run
     std::vector<std::string> fem_overrides;         // --fem-set: the fem run of --compare
     std::vector<std::string> mass_spring_overrides; // --mass-spring-set
     std::string              output_directory;      // empty: output/<scene name>

@@ -6,6 +6,7 @@
 #include "io/collective.h"
 #include "io/input_error.h"
 #include "io/output_file.h"
+#include "io/provenance.h"
 #include "time/explicit_stepper.h"
 #include "time/time_stepper.h"
 
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -107,11 +109,13 @@ namespace clothsim
     }
 
     // original.prm (the input as given, with the command line's overrides) and
-    // parameters.prm (every parameter's value), each written whole.
+    // parameters.prm (every parameter's value, after the run's provenance as comments),
+    // each written whole.
     void
-    write_input_copies(const std::string      &directory,
-                       const ParameterInput   &input,
-                       const ParameterHandler &prm)
+    write_input_copies(const std::string              &directory,
+                       const ParameterInput           &input,
+                       const ParameterHandler         &prm,
+                       const std::vector<std::string> &provenance)
     {
       std::ifstream      in(input.file, std::ios::binary);
       std::ostringstream original;
@@ -128,6 +132,9 @@ namespace clothsim
           }
       });
       io::write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
+        for (const std::string &line : provenance)
+          out << "# " << line << "\n";
+        out << "\n";
         std::ostringstream text;
         prm.print_parameters(text, ParameterHandler::PRM);
         out << without_unused_obstacles(text.str());
@@ -151,21 +158,22 @@ namespace clothsim
       TimerOutput timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times);
       Timer       wall_clock;
       RunOutcome  outcome;
+      std::optional<OutputWriter> output;
       try
         {
-          OutputWriter output(directory,
-                              communicator,
-                              model.output_piece(),
-                              scene.probes,
-                              model.energy_columns(),
-                              parameters.output.write_vtk);
-          output.set_frame_observer(observer);
+          output.emplace(directory,
+                         communicator,
+                         model.output_piece(),
+                         scene.probes,
+                         model.energy_columns(),
+                         parameters.output.write_vtk);
+          output->set_frame_observer(observer);
           if (is_explicit(parameters.time.integrator))
             outcome.summary =
-              ExplicitStepper(parameters, *scene.model, output, pcout, timer).run();
+              ExplicitStepper(parameters, *scene.model, *output, pcout, timer).run();
           else
             outcome.summary =
-              TimeStepper(parameters, *scene.model, output, pcout, timer).run();
+              TimeStepper(parameters, *scene.model, *output, pcout, timer).run();
           outcome.completed = true;
         }
       catch (const SimulationError &error)
@@ -174,6 +182,9 @@ namespace clothsim
           pcout << std::endl;
           if (is_root)
             std::cerr << "clothsim: simulation failed: " << error.what() << std::endl;
+          // What was computed up to the failure: every file written so far is whole.
+          if (output && is_root)
+            output->print_summary(std::cout);
         }
       catch (...)
         {
@@ -190,6 +201,8 @@ namespace clothsim
             << double(summary.linear_iterations) / std::max(1u, summary.newton_iterations)
             << " per Newton step), tangents " << summary.tangents << ", step halvings "
             << summary.retries << std::endl;
+      if (is_root)
+        output->print_summary(std::cout);
       if (parameters.time.adaptive_time_steps)
         {
           pcout << "estimated error at the end: " << summary.estimated_error
@@ -242,14 +255,17 @@ namespace clothsim
     const bool        is_root      = Utilities::MPI::this_mpi_process(communicator) == 0;
     const Parameters &parameters   = scene.parameters();
     const ClothModel &model        = *scene.model;
+    const std::vector<std::string> provenance = io::provenance_lines(communicator);
     io::run_collectively(communicator, [&]() {
       if (is_root)
         {
           prepare_output_directory(directory);
-          write_input_copies(directory, scene.input, scene.prm);
+          write_input_copies(directory, scene.input, scene.prm, provenance);
         }
     });
 
+    for (const std::string &line : provenance)
+      pcout << line << "\n";
     pcout << "clothsim: " << file << "\n"
           << "  mesh " << scene.mesh_file << ": " << model.n_vertices() << " vertices, "
           << model.get_dof_handler().get_triangulation().n_global_active_cells()

@@ -1,7 +1,7 @@
 #pragma once
 
 // An error in what the user gave us (parameter file, mesh, command line). main() prints
-// it as one line, "clothsim: error: <file>: <entry>: <message>", and exits non-zero.
+// it as one line, "clothsim: error: <file>[:<line>]: <entry>: <message>", and exits 1.
 
 #include <stdexcept>
 #include <string>
@@ -11,26 +11,35 @@ namespace clothsim
   class InputError : public std::runtime_error
   {
   public:
-    // file: the file at fault (parameter file, mesh); entry: the parameter, group or line
-    // concerned (may be empty); message: what was expected.
+    // file: the file at fault (parameter file, mesh) or the command-line option;
+    // entry: the parameter (Section/Name), group or item concerned (may be empty);
+    // message: what was expected; line: the file's line (0: none), as "file:line".
     InputError(const std::string &file,
                const std::string &entry,
-               const std::string &message)
-      : std::runtime_error(compose(file, entry, message))
+               const std::string &message,
+               const unsigned int line = 0)
+      : std::runtime_error(compose(file, entry, message, line))
       , file(file)
       , entry(entry)
       , message(message)
+      , line(line)
     {}
 
-    const std::string file;
-    const std::string entry;
-    const std::string message;
+    const std::string  file;
+    const std::string  entry;
+    const std::string  message;
+    const unsigned int line;
 
   private:
     static std::string
-    compose(const std::string &file, const std::string &entry, const std::string &message)
+    compose(const std::string &file,
+            const std::string &entry,
+            const std::string &message,
+            const unsigned int line)
     {
       std::string text = file.empty() ? std::string("<command line>") : file;
+      if (line > 0)
+        text += ":" + std::to_string(line);
       if (!entry.empty())
         text += ": " + entry;
       text += ": " + message;

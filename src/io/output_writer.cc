@@ -6,6 +6,8 @@
 
 #include "io/collective.h"
 
+#include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
@@ -21,7 +23,7 @@ namespace clothsim
     , communicator(communicator)
     , piece(piece)
     , probes(probes)
-    , n_energy_columns(energy_columns.size())
+    , energy_columns(energy_columns)
     , write_vtk(write_vtk)
     , is_root(Utilities::MPI::this_mpi_process(communicator) == 0)
   {
@@ -66,6 +68,8 @@ namespace clothsim
           values[3 * p + d] = u(probes[p].dofs[d]);
     MPI_Allreduce(
       MPI_IN_PLACE, values.data(), values.size(), MPI_DOUBLE, MPI_SUM, communicator);
+    last_state_time   = time;
+    last_probe_values = values;
     // solution.pvd lists complete frames only; then the probes' rows.
     io::run_collectively(communicator, [&]() {
       if (!is_root)
@@ -91,7 +95,10 @@ namespace clothsim
   void
   OutputWriter::write_statistics(const StepStatistics &row)
   {
-    AssertDimension(row.term_energies.size(), n_energy_columns);
+    AssertDimension(row.term_energies.size(), energy_columns.size());
+    if (!first_statistics)
+      first_statistics = row;
+    last_statistics = row;
     io::run_collectively(communicator, [&]() {
       if (!is_root)
         return;
@@ -110,5 +117,59 @@ namespace clothsim
       line << '\n';
       statistics_csv.append(line.str());
     });
+  }
+
+
+  void
+  OutputWriter::print_summary(std::ostream &out) const
+  {
+    if (!probes.empty() && !last_probe_values.empty())
+      {
+        out << "  probes at t = " << last_state_time << " s, displacement (m):";
+        for (unsigned int p = 0; p < probes.size(); ++p)
+          {
+            const double *u = &last_probe_values[3 * p];
+            out << (p == 0 ? " " : "; ") << probes[p].name << " (" << u[0] << ", " << u[1]
+                << ", " << u[2] << "), |u| " << std::hypot(u[0], u[1], u[2]);
+          }
+        out << "\n";
+      }
+    if (first_statistics && last_statistics)
+      {
+        const auto total = [](const StepStatistics &row) {
+          return row.kinetic_energy + row.elastic_energy + row.potential_energy;
+        };
+        const StepStatistics &first = *first_statistics, &last = *last_statistics;
+        out << "  energy (J) from t = " << first.time << " to " << last.time
+            << " s: kinetic " << first.kinetic_energy << " -> " << last.kinetic_energy
+            << ", elastic " << first.elastic_energy << " -> " << last.elastic_energy
+            << ", potential " << first.potential_energy << " -> " << last.potential_energy
+            << ", total " << total(first) << " -> " << total(last);
+        double dissipated = 0.;
+        for (unsigned int c = 0; c < energy_columns.size(); ++c)
+          {
+            const std::string &name   = energy_columns[c];
+            const std::string  suffix = "_dissipated";
+            if (name.size() > suffix.size() &&
+                name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+              {
+                dissipated += last.term_energies[c] - first.term_energies[c];
+                out << "; " << name << " " << last.term_energies[c];
+              }
+          }
+        out << "; total + dissipated changed by "
+            << total(last) + dissipated - total(first) << "\n";
+      }
+    if (write_vtk)
+      {
+        std::error_code error;
+        const auto path = std::filesystem::absolute(directory + "/solution.pvd", error)
+                            .lexically_normal();
+        out << "  open in ParaView: "
+            << (error ? directory + "/solution.pvd" : path.string()) << "\n";
+      }
+    else
+      out << "  results: " << directory << " (probes.csv, statistics.csv; no frames: "
+          << "Output/Write VTK = false)\n";
   }
 } // namespace clothsim

@@ -16,6 +16,8 @@
 #include "io/vtu_writer.h"
 
 #include <functional>
+#include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -75,17 +77,29 @@ namespace clothsim
       frame_observer = observer;
     }
 
+    // The run's closing summary, for its log: each probe's displacement in the last
+    // written state, the energies of the first and last statistics rows and the work
+    // dissipated (columns named *_dissipated), with the balance total + dissipated, and
+    // the path of solution.pvd to open in ParaView.
+    void
+    print_summary(std::ostream &out) const;
+
   private:
     const std::string                           directory;
     const MPI_Comm                              communicator;
     const io::SurfacePiece                      piece;
     const std::vector<ProbeLocation>            probes;
-    const std::size_t                           n_energy_columns;
+    const std::vector<std::string>              energy_columns;
     const bool                                  write_vtk;
     const bool                                  is_root;
     io::RowFile                                 probes_csv;
     io::RowFile                                 statistics_csv;
     std::vector<std::pair<double, std::string>> frames;
     FrameObserver                               frame_observer;
+    // For print_summary(): the last state's time and probe values (3 per probe), the
+    // first and last statistics rows.
+    double                        last_state_time = 0.;
+    std::vector<double>           last_probe_values;
+    std::optional<StepStatistics> first_statistics, last_statistics;
   };
 } // namespace clothsim

@@ -10,6 +10,7 @@
 
 #include "io/input_error.h"
 #include "io/input_file.h"
+#include "io/parameter_errors.h"
 #include "io/parameters_detail.h"
 
 #include <filesystem>
@@ -74,87 +75,6 @@ namespace clothsim
         }
       chain.pop_back();
     }
-
-
-    // A deal.II exception's "Additional information" as one line.
-    std::string
-    one_line(const std::exception &exception)
-    {
-      std::string       text   = exception.what();
-      const std::string marker = "Additional information:";
-      const auto        pos    = text.find(marker);
-      if (pos != std::string::npos)
-        text = text.substr(pos + marker.size());
-      const auto stacktrace = text.find("Stacktrace:");
-      if (stacktrace != std::string::npos)
-        text = text.substr(0, stacktrace);
-      // Drop deal.II's separator lines of dashes only: a value's own minus sign stays.
-      text =
-        std::regex_replace(text, std::regex("(^|\\n)[ \\t]*-{3,}[ \\t]*(?=\\n|$)"), "\n");
-      text = std::regex_replace(text, std::regex("\\s+"), " ");
-      text = std::regex_replace(text, std::regex("^ | $"), "");
-      return text;
-    }
-
-    // deal.II's parse errors ("Line <N> of file <F>: ...") as (entry, one-line text),
-    // with the entry given as Section/Name where the message names one.
-    std::pair<std::string, std::string>
-    describe_parse_error(const std::string &message, const std::string &section)
-    {
-      const std::string prefix = section.empty() ? "" : section + "/";
-      std::smatch       match;
-      if (std::regex_search(message,
-                            match,
-                            std::regex(
-                              "Line <([0-9]+)> of file <[^>]*>: The entry value (.*) "
-                              "for the entry named (.*) does not match the given "
-                              "pattern:? (.*)$")))
-        return {prefix + std::string(match[3]),
-                "value " + std::string(match[2]) + " does not match " +
-                  std::string(match[4]) + " (line " + std::string(match[1]) + ")"};
-      if (std::regex_search(message,
-                            match,
-                            std::regex(
-                              "Line <([0-9]+)> of file <[^>]*>: No entry with name "
-                              "<([^>]*)> was declared")))
-        return {prefix + std::string(match[2]),
-                "no such entry (line " + std::string(match[1]) +
-                  "; clothsim --print-parameters lists them all)"};
-      if (std::regex_search(message,
-                            match,
-                            std::regex("Line <([0-9]+)> of file <[^>]*>: (.*)$")))
-        return {"line " + std::string(match[1]), std::string(match[2])};
-      return {"", message};
-    }
-
-    // The subsection path (a/b) enclosing the line named in deal.II's "Line <N> of file"
-    // message.
-    std::string
-    current_section(const std::string &file, const std::string &message)
-    {
-      std::smatch match;
-      if (!std::regex_search(message, match, std::regex("Line <([0-9]+)>")))
-        return "";
-      const unsigned int       line_number = std::stoi(match[1]);
-      std::ifstream            in(file);
-      std::vector<std::string> sections;
-      std::string              line;
-      for (unsigned int n = 1; n < line_number && std::getline(in, line); ++n)
-        {
-          std::smatch words;
-          if (std::regex_search(line,
-                                words,
-                                std::regex("^\\s*subsection\\s+(.*?)\\s*(#.*)?$")))
-            sections.push_back(words[1]);
-          else if (std::regex_search(line, std::regex("^\\s*end\\s*(#.*)?$")) &&
-                   !sections.empty())
-            sections.pop_back();
-        }
-      std::string path;
-      for (const std::string &section : sections)
-        path += (path.empty() ? "" : "/") + section;
-      return path;
-    }
   } // namespace
 
 
@@ -195,51 +115,30 @@ namespace clothsim
 
   namespace
   {
-    // Reads the file (.prm or .json) into `prm`, then the --set assignments.
+    // Reads the file (.prm or .json) into `prm`, then the --set assignments. Errors in
+    // the common format of io/parameter_errors.h.
     void
     parse_file_and_overrides(ParameterHandler               &prm,
                              const std::string              &file,
                              const std::vector<std::string> &overrides)
     {
+      const io::DeclaredParameters declared(prm);
+      const bool json = std::filesystem::path(file).extension() == ".json";
+      if (json)
+        io::check_json_names(file, declared);
       try
         {
           prm.parse_input(file, "", /*skip_undefined=*/false, /*assert_mandatory=*/false);
         }
       catch (const std::exception &e)
         {
-          const std::string message = one_line(e);
-          const auto [entry, text] =
-            describe_parse_error(message, current_section(file, message));
-          throw InputError(file, entry, text);
+          if (json)
+            io::throw_json_error(file, io::one_line(e));
+          io::throw_prm_error(file, io::one_line(e), declared);
         }
-
       // --set "Section/Sub/Name=value"
       for (const std::string &assignment : overrides)
-        {
-          const auto equals = assignment.find('=');
-          if (equals == std::string::npos)
-            throw InputError("--set", assignment, "expected \"Section/Name=value\"");
-          const auto path =
-            Utilities::split_string_list(assignment.substr(0, equals), '/');
-          const std::string value = Utilities::trim(assignment.substr(equals + 1));
-          try
-            {
-              for (unsigned int i = 0; i + 1 < path.size(); ++i)
-                prm.enter_subsection(path[i]);
-              prm.set(path.back(), value);
-              for (unsigned int i = 0; i + 1 < path.size(); ++i)
-                prm.leave_subsection();
-            }
-          catch (const std::exception &e)
-            {
-              throw InputError(
-                "--set",
-                assignment.substr(0, equals),
-                "no such entry, or the value does not match its pattern (see "
-                "clothsim --print-parameters): " +
-                  one_line(e));
-            }
-        }
+        io::apply_assignment(prm, assignment, declared);
     }
   } // namespace
 
@@ -290,13 +189,11 @@ namespace clothsim
       }
     catch (const InputError &e)
       {
-        throw InputError(file, e.entry, e.message);
+        throw InputError(file, e.entry, e.message, e.line);
       }
     catch (const std::exception &e)
       {
-        const std::string message = one_line(e);
-        const auto [entry, text]  = describe_parse_error(message, "");
-        throw InputError(file, entry, text);
+        throw InputError(file, "", io::one_line(e));
       }
 
     // Checks that patterns cannot express.

@@ -338,9 +338,10 @@ namespace clothsim
   };
 
   // Every parameter as "Section/Name = default", its allowed values and its documentation
-  // (units included), for clothsim --print-parameters.
+  // (units included), for clothsim --print-parameters; with `json`, one JSON object of
+  // the sections, each entry an object {"default", "allowed", "documentation"}.
   void
-  print_parameter_reference(std::ostream &out);
+  print_parameter_reference(std::ostream &out, const bool json = false);
 
   // The parameter file as read, with command-line overrides applied.
   struct ParameterInput

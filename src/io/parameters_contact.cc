@@ -59,7 +59,8 @@ namespace clothsim
       "The cloth against itself: every vertex-triangle and edge-edge pair that "
       "shares no vertex pays the same barrier within 'Thickness', and the line "
       "search never lets the cloth pass through itself. 'Thickness' must be below "
-      "the smallest such distance at rest (checked). One MPI rank only.");
+      "the smallest such distance at rest (checked). Works under MPI (every rank holds "
+      "the whole surface).");
     prm.declare_entry(
       "Self friction",
       "0",

@@ -93,8 +93,12 @@ namespace clothsim
     prm.declare_entry(
       "Progress",
       "auto",
-      Patterns::Selection("auto|on|off"),
-      "One updating progress line with ETA: 'auto' shows it on a terminal only.");
+      Patterns::Selection("auto|lines|off"),
+      "Progress of the run (step, simulated time, elapsed time, ETA): 'auto' shows one "
+      "updating line on a terminal, and otherwise (output to a file or pipe, any run "
+      "under mpirun, whose ranks write to pseudo-terminals) a plain line every 5 % of "
+      "the run, never a carriage return; 'lines' the plain lines always; 'off' "
+      "nothing.");
     prm.leave_subsection();
   }
 

@@ -3,26 +3,39 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 
 namespace clothsim
 {
+  bool
+  Progress::updating_terminal()
+  {
+    // Open MPI, MPICH and the PMIx launchers (srun) set these in every rank.
+    for (const char *variable : {"OMPI_COMM_WORLD_SIZE", "PMI_RANK", "PMIX_RANK"})
+      if (std::getenv(variable) != nullptr)
+        return false;
+    return isatty(fileno(stdout)) != 0;
+  }
+
+
   Progress::Progress(std::ostream &out, const std::string &mode, const bool active)
     : out(out)
     , enabled(active && mode != "off")
-    , terminal(isatty(fileno(stdout)) != 0)
+    , terminal(mode == "auto" && updating_terminal())
     , start(std::chrono::steady_clock::now())
-  {
-    if (mode == "auto" && !terminal)
-      enabled = false;
-  }
+  {}
 
 
   void
   Progress::update(const double fraction, const std::string &state)
   {
     if (!enabled)
+      return;
+    // Plain lines at 5 %, 10 %, ... (and the end); the updating line at every call.
+    constexpr double round_off = 1e-9; // t/T of a step at 5 % may fall just short
+    if (!terminal && fraction + round_off < next_line_fraction && fraction < 1.)
       return;
     const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -35,11 +48,11 @@ namespace clothsim
         out << '\r' << line.str() << "\033[K" << std::flush;
         line_open = true;
       }
-    else if (fraction >= next_log_fraction)
+    else
       {
         out << line.str() << '\n' << std::flush;
-        while (next_log_fraction <= fraction)
-          next_log_fraction += 0.1;
+        while (next_line_fraction <= fraction + round_off)
+          next_line_fraction += line_interval;
       }
   }
 

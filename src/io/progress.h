@@ -1,7 +1,8 @@
 #pragma once
 
-// Progress of a long run: one updating line on a terminal (step, simulated time, ETA), or
-// a plain line every tenth of the run when the output goes to a log.
+// Progress of a long run: on a terminal one updating line (step, simulated time, elapsed
+// time, ETA); otherwise (a log file, a pipe, any run under an MPI launcher) a plain line
+// every 5 % of the run, never a carriage return.
 
 #include <chrono>
 #include <ostream>
@@ -12,8 +13,8 @@ namespace clothsim
   class Progress
   {
   public:
-    // mode: "auto" (updating line only on a terminal), "on", "off". Only `active` ranks
-    // print.
+    // mode (Output/Progress): "auto" (the updating line on a terminal, plain lines
+    // otherwise), "lines" (plain lines always), "off". Only `active` ranks print.
     Progress(std::ostream &out, const std::string &mode, const bool active);
     // Ends an open line, also when a run stops with an exception.
     ~Progress()
@@ -24,15 +25,25 @@ namespace clothsim
     // fraction in [0, 1] of the run done, with a short description of the state.
     void
     update(const double fraction, const std::string &state);
+    // Ends the updating line, if one is open (before other output).
     void
     finish();
+
+    // The fraction of the run between two plain lines.
+    static constexpr double line_interval = 0.05;
+
+    // Whether standard output is a terminal that shows an updating line: not under an
+    // MPI launcher, whose ranks write to pseudo-terminals even when the launcher's own
+    // output goes to a file.
+    static bool
+    updating_terminal();
 
   private:
     std::ostream                         &out;
     bool                                  enabled;
     bool                                  terminal;
     std::chrono::steady_clock::time_point start;
-    double                                next_log_fraction = 0.1;
-    bool                                  line_open         = false;
+    double                                next_line_fraction = line_interval;
+    bool                                  line_open          = false;
   };
 } // namespace clothsim
