@@ -189,9 +189,8 @@ def main(argv):
         if old.startswith("frame-") and old.endswith(".png"):
             os.remove(os.path.join(arguments.output, old))
     reader = pv.PVDReader(registrationName="solution.pvd", FileName=arguments.pvd)
-    times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
-    if isinstance(reader.TimestepValues, float):
-        times = [reader.TimestepValues]
+    values = reader.TimestepValues  # a number for a single frame
+    times = [values] if isinstance(values, float) else (list(values) or [0.0])
     rendered = times[:: arguments.stride]
     if rendered[-1] != times[-1]:
         rendered.append(times[-1])
