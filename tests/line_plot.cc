@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -115,6 +116,18 @@ namespace
     return {x, y};
   }
 
+  PlotPanel
+  make_panel(const std::string &title,
+             const std::string &x_label,
+             const std::string &y_label)
+  {
+    PlotPanel panel;
+    panel.title   = title;
+    panel.x_label = x_label;
+    panel.y_label = y_label;
+    return panel;
+  }
+
   PlotSeries
   series(const std::string         &label,
          const std::vector<double> &x,
@@ -142,12 +155,12 @@ main(int argc, char **argv)
 
   // A two-panel linear plot.
   {
-    PlotPanel top{"probe tip", "time (s)", "uz (m)", {}};
+    PlotPanel top = make_panel("probe tip", "time (s)", "uz (m)");
     top.series.push_back(
       series("fem", {0., 0.1, 0.2, 0.3}, {0., -0.25, nan, -0.5}, false));
     top.series.push_back(series("mass-spring", {0., 0.1}, {1. / 3., 2. / 3.}, true));
     top.series.back().dashed = true;
-    PlotPanel bottom{"probe \"corner\"", "time (s)", "ux (m)", {}};
+    PlotPanel bottom         = make_panel("probe \"corner\"", "time (s)", "ux (m)");
     bottom.series.push_back(series("fem", {0., 1.}, {1e-3, 2e-3}, false));
     const bool drawn = write_line_plot(directory + "/two.png", {top, bottom}, 800, 250);
     check(out, drawn, "two panels: drawn");
@@ -174,7 +187,6 @@ main(int argc, char **argv)
           std::string("set title \"probe \\\"corner\\\"\" noenhanced"),
           std::string("set xlabel \"time (s)\""),
           std::string("set ylabel \"uz (m)\""),
-          std::string("set key outside right top"),
           std::string("set terminal pngcairo"),
           std::string("set terminal svg"),
           std::string("size 800,500"),
@@ -184,6 +196,23 @@ main(int argc, char **argv)
           std::string("title \"mass-spring\""),
           std::string("unset logscale x")})
       check(out, contains(script, part), "two panels: script has '" + part + "'");
+    // The legend right of the axes: the key's left edge beyond the panels' right margin.
+    double     left = 0., right = 0., lower = 0., upper = 0., key_x = 0.;
+    const auto layout = script.find("set multiplot layout 2,1 margins ");
+    const auto key    = script.find("set key at screen ");
+    if (layout != std::string::npos)
+      std::sscanf(script.c_str() + layout,
+                  "set multiplot layout 2,1 margins %lf, %lf, %lf, %lf",
+                  &left,
+                  &right,
+                  &lower,
+                  &upper);
+    if (key != std::string::npos)
+      std::sscanf(script.c_str() + key, "set key at screen %lf", &key_x);
+    check(out,
+          left > 0. && left < right && right < key_x && key_x < 1. && lower < upper,
+          "two panels: margins " + std::to_string(left) + " to " + std::to_string(right) +
+            ", the legend at " + std::to_string(key_x) + " (screen), outside the axes");
     const auto size = png_size(directory + "/two.png");
     check_equal(out, "two panels: PNG width", size.first, 800u);
     check_equal(out, "two panels: PNG height", size.second, 500u);
@@ -201,14 +230,14 @@ main(int argc, char **argv)
 
   // A log-log panel with reference slopes: errors of order 2 with one bad point.
   {
-    PlotPanel panel{"space convergence", "mesh size h/h0", "error (m)", {}};
+    PlotPanel panel = make_panel("space convergence", "mesh size h/h0", "error (m)");
     panel.log_x = panel.log_y = true;
     panel.reference_orders    = {1., 2.};
     panel.series.push_back(series("probe:tip",
                                   {1., 0.5, 0.25, 0.125, 0.0625},
                                   {1e-2, 2.5e-3, 0., 1.5625e-4, 3.90625e-5},
                                   true));
-    PlotPanel narrow{"one decade", "runtime (s)", "error (m)", {}};
+    PlotPanel narrow = make_panel("one decade", "runtime (s)", "error (m)");
     narrow.log_x = narrow.log_y = true;
     narrow.series.push_back(series("fem", {2., 3., 5.}, {0.2, 0.3, 0.5}, true));
     check(out,
@@ -280,7 +309,7 @@ main(int argc, char **argv)
   {
     const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
     setenv("PATH", (directory + "/no-such-directory").c_str(), 1);
-    PlotPanel panel{"t", "x (m)", "y (m)", {}};
+    PlotPanel panel = make_panel("t", "x (m)", "y (m)");
     panel.series.push_back(series("a", {0., 1.}, {0., 1.}, false));
     std::ostringstream warning;
     auto *const        old_buffer = std::cerr.rdbuf(warning.rdbuf());
@@ -303,7 +332,7 @@ main(int argc, char **argv)
 
   // Errors.
   {
-    PlotPanel panel{"t", "x", "y", {}};
+    PlotPanel panel = make_panel("t", "x", "y");
     panel.series.push_back(series("a", {0., 1.}, {0., 1.}, false));
     const auto throws = [&](const std::string &what, const auto &call) {
       try

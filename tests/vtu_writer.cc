@@ -30,6 +30,51 @@ using namespace clothsim::test;
 
 namespace
 {
+  struct Frame
+  {
+    SurfacePiece piece;
+    FrameData    data;
+  };
+
+  // An nx x ny grid of 0.5 m squares, two triangles each, starting at x = x0, with
+  // irrational coordinates and field values that differ per vertex, triangle and `seed`.
+  Frame
+  make_frame(const unsigned int nx,
+             const unsigned int ny,
+             const double       x0,
+             const unsigned int seed)
+  {
+    Frame frame;
+    for (unsigned int j = 0; j <= ny; ++j)
+      for (unsigned int i = 0; i <= nx; ++i)
+        frame.piece.points.push_back(
+          {{x0 + 0.5 * i, 0.5 * j, 0.1 * std::sin(i + 2. * j + seed)}});
+    for (unsigned int j = 0; j < ny; ++j)
+      for (unsigned int i = 0; i < nx; ++i)
+        {
+          const unsigned int v0 = j * (nx + 1) + i, v1 = v0 + 1, v2 = v0 + nx + 1,
+                             v3 = v2 + 1;
+          frame.piece.triangles.push_back({{v0, v1, v3}});
+          frame.piece.triangles.push_back({{v0, v3, v2}});
+        }
+    const std::size_t n_points = frame.piece.points.size();
+    const std::size_t n_cells  = frame.piece.triangles.size();
+
+    Field displacement{"displacement", 3, {}}, speed{"speed", 1, {}};
+    for (std::size_t k = 0; k < 3 * n_points; ++k)
+      displacement.values.push_back(1e-3 * std::sin(0.7 * k + seed));
+    for (std::size_t k = 0; k < n_points; ++k)
+      speed.values.push_back(std::exp(-0.01 * k) / (3. + seed));
+    Field green_strain{"green_strain", 1, {}}, stress{"membrane_stress", 3, {}};
+    for (std::size_t c = 0; c < n_cells; ++c)
+      green_strain.values.push_back(1e-4 * (1. + c) + 1e-7 * seed / 3.);
+    for (std::size_t k = 0; k < 3 * n_cells; ++k)
+      stress.values.push_back(1e3 * std::cos(0.3 * k + seed));
+    frame.data.point_fields = {displacement, speed};
+    frame.data.cell_fields  = {green_strain, stress};
+    return frame;
+  }
+
   // The pieces concatenated in rank order, as the .pvtu reads them.
   Frame
   concatenated(const std::vector<Frame> &frames)
