@@ -4,7 +4,7 @@ Run with ParaView's batch client (scripts/render.sh starts it under xvfb-run whe
 no display):
 
     pvbatch scripts/render.py output/default
-    pvbatch scripts/render.py output/drape --field green_strain --view -y --stride 2 \\
+    pvbatch scripts/render.py output/drape --field green_strain --view front --stride 2 \\
         --size 1280x720 --output /tmp/drape-pictures --no-movie
 
 Reads DIR/solution.pvd (.vtu frames, or .pvtu with one piece per rank), shows the deformed
@@ -39,14 +39,15 @@ UNITS = {
     "curvature_change": "1/m",
     "rank": "",
 }
-# Camera directions (from the surface's centre towards the camera) and up vectors.
+# Camera directions (from the surface's centre towards the camera) and up vectors, for
+# scenes with z up (gravity along -z): front is the side of -y.
 VIEWS = {
-    "+x": ((1, 0, 0), (0, 0, 1)),
-    "-x": ((-1, 0, 0), (0, 0, 1)),
-    "+y": ((0, 1, 0), (0, 0, 1)),
-    "-y": ((0, -1, 0), (0, 0, 1)),
-    "+z": ((0, 0, 1), (0, 1, 0)),
-    "-z": ((0, 0, -1), (0, 1, 0)),
+    "front": ((0, -1, 0), (0, 0, 1)),
+    "back": ((0, 1, 0), (0, 0, 1)),
+    "left": ((-1, 0, 0), (0, 0, 1)),
+    "right": ((1, 0, 0), (0, 0, 1)),
+    "top": ((0, 0, 1), (0, 1, 0)),
+    "bottom": ((0, 0, -1), (0, 1, 0)),
     "iso": ((0.6, -1.0, 0.7), (0, 0, 1)),
 }
 COMPONENTS = {"magnitude": "Magnitude", "x": "X", "y": "Y", "z": "Z"}
@@ -65,7 +66,9 @@ def parse_arguments(argv):
         help="colour by this point or cell array, optionally with a component: "
         "NAME, NAME:magnitude, NAME:x|y|z (default: displacement's magnitude)",
     )
-    parser.add_argument("--view", default="iso", choices=sorted(VIEWS), help="camera direction")
+    parser.add_argument("--view", default="iso", choices=sorted(VIEWS),
+                        help="camera on the side -y (front), +y (back), -x (left), +x "
+                        "(right), +z (top), -z (bottom), or iso: from +x, -y, +z")
     parser.add_argument("--stride", type=int, default=1, help="render every N-th frame")
     parser.add_argument("--fps", type=int, default=15, help="movie frames per second")
     movie = parser.add_mutually_exclusive_group()
