@@ -178,14 +178,14 @@ namespace clothsim::io
     {
       // Margins in pixels, the same for every panel so that the boxes line up: 85 left
       // for the tick labels and the y label, on the right room for the longest legend
-      // entry (about 7.5 px a character at 11 pt, 60 for the sample; at most half the
-      // width), 45 above for the title, 65 below and 120 between panels for the tick
-      // labels, the x label and the next title.
+      // entry (at most 8 px a character at 11 pt, 90 for the sample and gaps; at most
+      // half the width), 45 above for the title, 65 below and 120 between panels for the
+      // tick labels, the x label and the next title.
       std::size_t longest = 0;
       for (const auto &panel_blocks : blocks)
         for (const Block &block : panel_blocks)
           longest = std::max(longest, block.title.size());
-      const double legend = std::min(0.5 * width, 60. + 7.5 * longest);
+      const double legend = std::min(0.5 * width, 90. + 8. * longest);
       script << "set multiplot layout " << panels.size() << ",1 margins " << 85. / width
              << ", " << 1. - (legend + 15.) / width << ", " << 65. / height << ", "
              << 1. - 45. / height << " spacing 0, " << 120. / height << "\n"
