@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -41,6 +42,8 @@ namespace clothsim::io
     const int result =
       posix_spawnp(&child, "gnuplot", &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
+    if (result != 0) // no gnuplot ran: no log either
+      std::remove(log_file.c_str());
     if (result == ENOENT)
       return "gnuplot not found on PATH (Debian package gnuplot-nox)";
     if (result != 0)
