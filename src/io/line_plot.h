@@ -60,8 +60,9 @@ namespace clothsim::io
                   unsigned int                  panel_height = 300);
 
   // Runs `gnuplot` with `arguments` in `directory` (found on PATH), stdout and stderr
-  // into `log_file`. Returns "" on success, else the reason ("gnuplot not found on
-  // PATH (Debian package gnuplot-nox)", the exit status and the log's first lines).
+  // into `log_file` (removed again if gnuplot cannot be started). Returns "" on success,
+  // else the reason ("gnuplot not found on PATH (Debian package gnuplot-nox)", the exit
+  // status and the log's first lines).
   std::string
   run_gnuplot(const std::string              &directory,
               const std::vector<std::string> &arguments,
