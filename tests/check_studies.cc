@@ -3,16 +3,20 @@
 //     convergence.csv lists every level with the unknowns growing (space) or the step
 //     halving (time); QUANTITY's observed order at the finest level lies in [MIN_ORDER,
 //     MAX_ORDER] and its error there is below FINEST_BOUND (m); convergence.png is a
-//     PNG.
+//     PNG, convergence.svg is there and gnuplot's script draws log axes and the reference
+//     slopes of order 1 and 2.
 //   check_studies sweep DIR RUNS
 //     pareto.csv has RUNS settings, all completed, plus the reference (error 0); every
 //     error is finite and positive; the on_front flags are exactly the runs that no
-//     other run beats in both runtime and error; pareto.png is a PNG.
+//     other run beats in both runtime and error; pareto.png is a PNG, pareto.svg is
+//     there and the script labels the runtime axis.
 
 #include "test_support.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 
 using namespace clothsim::test;
@@ -26,6 +30,16 @@ namespace
     char          signature[8] = {};
     in.read(signature, 8);
     return in && std::string(signature, 8) == "\x89PNG\r\n\x1a\n";
+  }
+
+  // The gnuplot script beside a plot (io/line_plot.h) has `part`.
+  bool
+  script_has(const std::string &file, const std::string &part)
+  {
+    std::ifstream     in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)),
+                           std::istreambuf_iterator<char>());
+    return text.find(part) != std::string::npos;
   }
 
   bool
@@ -73,6 +87,14 @@ namespace
     passed &= check(out, error < finest_bound, "finest error below the bound");
     passed &=
       check(out, is_png(directory + "/convergence.png"), "convergence.png is a PNG");
+    passed &= check(out,
+                    std::filesystem::exists(directory + "/convergence.svg"),
+                    "convergence.svg written");
+    passed &= check(out,
+                    script_has(directory + "/convergence.gp", "title \"order 1\"") &&
+                      script_has(directory + "/convergence.gp", "title \"order 2\"") &&
+                      script_has(directory + "/convergence.gp", "set logscale x 10"),
+                    "convergence.gp: log axes, reference slopes of order 1 and 2");
     return passed;
   }
 
@@ -119,6 +141,10 @@ namespace
                           " and flagged accordingly");
       }
     passed &= check(out, is_png(directory + "/pareto.png"), "pareto.png is a PNG");
+    passed &= check(out,
+                    script_has(directory + "/pareto.gp", "set xlabel \"runtime (s)\"") &&
+                      std::filesystem::exists(directory + "/pareto.svg"),
+                    "pareto.gp labels the runtime axis, pareto.svg written");
     return passed;
   }
 } // namespace

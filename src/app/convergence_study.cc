@@ -200,7 +200,8 @@ namespace clothsim
       });
     }
 
-    void
+    // Returns whether gnuplot drew it (io/line_plot.h).
+    bool
     write_plot(const std::vector<Study> &studies, const std::string &file)
     {
       static const std::array<std::array<unsigned char, 3>, 6> colors = {
@@ -220,6 +221,9 @@ namespace clothsim
           panel.y_label = "error (m)";
           panel.log_x   = true;
           panel.log_y   = true;
+          // First order (backward Euler) and second (P1 membrane and shell, BDF2, the
+          // midpoint rule): the orders the methods can reach.
+          panel.reference_orders = {1., 2.};
           for (unsigned int q = 0; q < study.quantities.size(); ++q)
             {
               io::PlotSeries series;
@@ -233,8 +237,7 @@ namespace clothsim
             }
           panels.push_back(panel);
         }
-      if (!panels.empty())
-        io::write_line_plot(file, panels);
+      return !panels.empty() && io::write_line_plot(file, panels);
     }
   } // namespace
 
@@ -347,9 +350,9 @@ namespace clothsim
                 print_table(study, std::cout);
             }
           write_csv(studies, directory + "/convergence.csv");
-          write_plot(studies, directory + "/convergence.png");
-          std::cout << "wrote " << directory << "/convergence.csv and convergence.png"
-                    << std::endl;
+          const bool plotted = write_plot(studies, directory + "/convergence.png");
+          std::cout << "wrote " << directory << "/convergence.csv"
+                    << (plotted ? " and convergence.png, .svg" : "") << std::endl;
         }
     });
     return all_completed ? 0 : 2;

@@ -93,7 +93,8 @@ namespace clothsim
       });
     }
 
-    void
+    // Returns whether gnuplot drew it (io/line_plot.h).
+    bool
     write_plot(const std::vector<SweepPoint> &points, const std::string &file)
     {
       io::PlotPanel panel;
@@ -130,7 +131,7 @@ namespace clothsim
       for (const io::PlotSeries *series : {&fem, &springs, &front})
         if (!series->x.empty())
           panel.series.push_back(*series);
-      io::write_line_plot(file, {panel}, 800, 500);
+      return io::write_line_plot(file, {panel}, 800, 500);
     }
 
     // For each decade of error the sweep reaches: the fastest setting within it.
@@ -330,7 +331,7 @@ namespace clothsim
         {
           mark_front(points);
           write_csv(points, reference, directory + "/pareto.csv");
-          write_plot(points, directory + "/pareto.png");
+          const bool plotted = write_plot(points, directory + "/pareto.png");
           std::cout << "Pareto front (runtime, error at the end):\n";
           std::vector<const SweepPoint *> front;
           for (const SweepPoint &point : points)
@@ -344,7 +345,8 @@ namespace clothsim
                       << std::setw(12) << point->error << " m  " << joined(point->setting)
                       << "\n";
           print_fastest(points, std::cout);
-          std::cout << "wrote " << directory << "/pareto.csv and pareto.png" << std::endl;
+          std::cout << "wrote " << directory << "/pareto.csv"
+                    << (plotted ? " and pareto.png, .svg" : "") << std::endl;
         }
     });
     return 0;

@@ -1,274 +1,235 @@
-// Line plots drawn into an RGB buffer panel by panel: axes box, grid, data as
-// Bresenham lines, dots or disc markers, ticks, legend and labels. Scales and ticks are
-// in io/line_plot_axes.cc, the bitmap font in io/line_plot_font.cc, the PNG encoder in
-// io/line_plot_png.cc.
+// Line plots: the data file and the gnuplot script (io/line_plot.h); running gnuplot is
+// in io/line_plot_gnuplot.cc.
 
 #include "io/line_plot.h"
 
-#include "io/line_plot_detail.h"
 #include "io/output_file.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <sstream>
 #include <stdexcept>
 
 namespace clothsim::io
 {
-  using namespace detail;
-
-
   namespace
   {
-    constexpr Color black{{0, 0, 0}};
-    constexpr Color white{{255, 255, 255}};
-    constexpr Color grid_grey{{225, 225, 225}};
-    constexpr Color minor_grey{{240, 240, 240}}; // minor grid of log axes
-
-
-    // 2x2 dot: data lines are 2 px wide.
-    void
-    dot(Image &image, const int x, const int y, const Color &c)
+    // A number to 17 significant digits (read back exactly).
+    std::string
+    exact(const double value)
     {
-      image.fill(x, y, x + 1, y + 1, c);
+      char text[32];
+      std::snprintf(text, sizeof(text), "%.17g", value);
+      return text;
     }
 
-    // Filled disc, 6 px across with the corners cut, centred like dot() on (x + 0.5,
-    // y + 0.5) so that it sits on a line through (x, y).
-    void
-    marker(Image &image, const int x, const int y, const Color &c)
+    // A gnuplot string in double quotes: backslashes and quotes escaped.
+    std::string
+    quoted(const std::string &text)
     {
-      for (int dy = -2; dy <= 3; ++dy)
-        for (int dx = -2; dx <= 3; ++dx)
-          if ((dx - 0.5) * (dx - 0.5) + (dy - 0.5) * (dy - 0.5) <= 8.5)
-            image.set(x + dx, y + dy, c);
+      std::string result = "\"";
+      for (const char c : text)
+        {
+          if (c == '"' || c == '\\')
+            result += '\\';
+          result += c;
+        }
+      return result + '"';
     }
 
-    // Bresenham line of dots. `dash` (null: solid) counts dots along a series so that
-    // dashes (10 on, 6 off) continue across segments.
-    void
-    draw_line(Image       &image,
-              int          x0,
-              int          y0,
-              const int    x1,
-              const int    y1,
-              const Color &c,
-              int         *dash)
+    std::string
+    hex_color(const std::array<unsigned char, 3> &color)
     {
-      const int dx = std::abs(x1 - x0), sx = x0 < x1 ? 1 : -1;
-      const int dy = -std::abs(y1 - y0), sy = y0 < y1 ? 1 : -1;
-      int       err = dx + dy;
-      while (true)
-        {
-          if (dash == nullptr || (*dash)++ % 16 < 10)
-            dot(image, x0, y0, c);
-          if (x0 == x1 && y0 == y1)
-            break;
-          const int e2 = 2 * err;
-          if (e2 >= dy)
-            {
-              err += dy;
-              x0 += sx;
-            }
-          if (e2 <= dx)
-            {
-              err += dx;
-              y0 += sy;
-            }
-        }
+      char text[8];
+      std::snprintf(text, sizeof(text), "#%02x%02x%02x", color[0], color[1], color[2]);
+      return text;
     }
 
-
-    void
-    draw_panel(Image &image, const PlotPanel &panel, const int top, const int height)
+    bool
+    drawable(const double x, const double y, const PlotPanel &panel)
     {
-      // Points drawn: finite, and positive on a log axis. Their axis coordinates.
-      const auto drawn = [&panel](const double x, const double y) {
-        return std::isfinite(x) && std::isfinite(y) && (!panel.log_x || x > 0.) &&
-               (!panel.log_y || y > 0.);
-      };
-      const auto x_coordinate = [&panel](const double x) {
-        return panel.log_x ? std::log10(x) : x;
-      };
-      const auto y_coordinate = [&panel](const double y) {
-        return panel.log_y ? std::log10(y) : y;
-      };
+      return std::isfinite(x) && std::isfinite(y) && (!panel.log_x || x > 0.) &&
+             (!panel.log_y || y > 0.);
+    }
 
-      // Data ranges.
-      double x_min = HUGE_VAL, x_max = -HUGE_VAL, y_min = HUGE_VAL, y_max = -HUGE_VAL;
-      for (const PlotSeries &s : panel.series)
-        {
-          if (s.x.size() != s.y.size())
-            throw std::invalid_argument("write_line_plot: series '" + s.label +
-                                        "' has x and y of different lengths");
-          for (std::size_t i = 0; i < s.x.size(); ++i)
-            if (drawn(s.x[i], s.y[i]))
-              {
-                x_min = std::min(x_min, x_coordinate(s.x[i]));
-                x_max = std::max(x_max, x_coordinate(s.x[i]));
-                y_min = std::min(y_min, y_coordinate(s.y[i]));
-                y_max = std::max(y_max, y_coordinate(s.y[i]));
-              }
-        }
-      const Scale x_axis =
-        panel.log_x ? make_log_scale(x_min, x_max) : make_linear_scale(x_min, x_max);
-      const Scale y_axis =
-        panel.log_y ? make_log_scale(y_min, y_max) : make_linear_scale(y_min, y_max);
-      const std::vector<std::string> &x_labels = x_axis.labels;
-      const std::vector<std::string> &y_labels = y_axis.labels;
+    // One block of the data file: what it draws and how.
+    struct Block
+    {
+      std::string         title; // legend text, "" for none
+      std::string         style; // gnuplot "with ..." clause
+      std::vector<double> x, y;
+    };
 
-      // Layout: title row on top, tick labels and x label below, tick labels and the
-      // vertical y label on the left.
-      constexpr int tick          = 5;
-      int           y_label_width = 0;
-      for (const std::string &label : y_labels)
-        y_label_width = std::max(y_label_width, text_width(label));
-      const int box_left =
-        6 + (panel.y_label.empty() ? 0 : glyph_rows + 6) + y_label_width + 4 + tick;
-      const int box_right =
-        image.width - 1 - std::max(12, text_width(x_labels.back()) / 2 + 4);
-      const int box_top    = top + 22;
-      const int box_bottom = top + height - 1 - (tick + 4 + glyph_rows + 4) -
-                             (panel.x_label.empty() ? 0 : glyph_rows + 6);
-      if (box_right - box_left < 40 || box_bottom - box_top < 40)
-        throw std::invalid_argument(
-          "write_line_plot: plot size too small for its labels");
-      const auto px = [&](const double x) {
-        return to_pixel(x, x_axis, box_left, box_right);
-      };
-      const auto py = [&](const double y) {
-        return to_pixel(y, y_axis, box_bottom, box_top);
-      };
-
-      // Grid (minor lines first, if not too dense), then data clipped to the inside of
-      // the box, then the box itself.
-      if (minor_grid_fits(x_axis, box_right - box_left))
-        for (const double c : x_axis.minor)
-          image.fill(px(c), box_top, px(c), box_bottom, minor_grey);
-      if (minor_grid_fits(y_axis, box_bottom - box_top))
-        for (const double c : y_axis.minor)
-          image.fill(box_left, py(c), box_right, py(c), minor_grey);
-      for (const double c : x_axis.major)
-        image.fill(px(c), box_top, px(c), box_bottom, grid_grey);
-      for (const double c : y_axis.major)
-        image.fill(box_left, py(c), box_right, py(c), grid_grey);
-      image.clip(box_left + 1, box_top + 1, box_right - 1, box_bottom - 1);
-      for (const PlotSeries &s : panel.series)
-        {
-          int  dash = 0, x_prev = 0, y_prev = 0;
-          bool connected = false;
-          for (std::size_t i = 0; i < s.x.size(); ++i)
-            {
-              if (!drawn(s.x[i], s.y[i]))
-                {
-                  connected = false;
-                  continue;
-                }
-              const int x = px(x_coordinate(s.x[i])), y = py(y_coordinate(s.y[i]));
-              if (s.line && connected)
-                draw_line(
-                  image, x_prev, y_prev, x, y, s.color, s.dashed ? &dash : nullptr);
-              else if (!s.markers)
-                dot(image, x, y, s.color); // visible even if isolated
-              x_prev    = x;
-              y_prev    = y;
-              connected = true;
-            }
-          if (s.markers) // on top of the series' own line
-            for (std::size_t i = 0; i < s.x.size(); ++i)
-              if (drawn(s.x[i], s.y[i]))
-                marker(image,
-                       px(x_coordinate(s.x[i])),
-                       py(y_coordinate(s.y[i])),
-                       s.color);
-        }
-      image.reset_clip();
-      image.fill(box_left, box_top, box_right, box_top, black);
-      image.fill(box_left, box_bottom, box_right, box_bottom, black);
-      image.fill(box_left, box_top, box_left, box_bottom, black);
-      image.fill(box_right, box_top, box_right, box_bottom, black);
-
-      // Ticks and their labels.
-      for (std::size_t i = 0; i < x_axis.major.size(); ++i)
-        {
-          const int          x     = px(x_axis.major[i]);
-          const std::string &label = x_labels[i];
-          image.fill(x, box_bottom + 1, x, box_bottom + tick, black);
-          draw_text(
-            image, label, x - text_width(label) / 2, box_bottom + tick + 4, black);
-        }
-      for (std::size_t i = 0; i < y_axis.major.size(); ++i)
-        {
-          const int          y     = py(y_axis.major[i]);
-          const std::string &label = y_labels[i];
-          image.fill(box_left - tick, y, box_left - 1, y, black);
-          draw_text(image, label, box_left - tick - 4 - text_width(label), y - 3, black);
-        }
-
-      // Legend in the top-right corner of the box: per series a short line (if drawn as
-      // a line), a marker in its middle (if drawn with markers) and the label.
-      int n_entries = 0, legend_text_width = 0;
-      for (const PlotSeries &s : panel.series)
-        if (!s.label.empty())
+    // The reference slope y = C x^p over the first series' drawable x range, through the
+    // centre of its points in log space; empty if there are fewer than two points.
+    Block
+    reference_slope(const PlotPanel &panel, const double order, const unsigned int number)
+    {
+      // Dotted, dash-dotted, ...; dark and light grey: told apart from each other and
+      // from the data.
+      Block block{"order " + exact(order),
+                  "lines dt " + std::to_string(3 + number % 3) + " lw 1.5 lc rgb \"" +
+                    (number % 2 == 0 ? "#606060" : "#a0a0a0") + "\"",
+                  {},
+                  {}};
+      if (panel.series.empty())
+        return block;
+      const PlotSeries &series    = panel.series.front();
+      double            sum_log_x = 0., sum_log_y = 0.;
+      double            low = std::numeric_limits<double>::infinity(), high = -low;
+      unsigned int      n_points = 0;
+      for (std::size_t i = 0; i < series.x.size(); ++i)
+        if (drawable(series.x[i], series.y[i], panel) && series.x[i] > 0. &&
+            series.y[i] > 0.)
           {
-            ++n_entries;
-            legend_text_width = std::max(legend_text_width, text_width(s.label));
+            sum_log_x += std::log(series.x[i]);
+            sum_log_y += std::log(series.y[i]);
+            low  = std::min(low, series.x[i]);
+            high = std::max(high, series.x[i]);
+            ++n_points;
           }
-      if (n_entries > 0)
-        {
-          const int right = box_right - 6,
-                    left  = right - (8 + 24 + 6 + legend_text_width + 8);
-          const int upper = box_top + 6, lower = upper + 6 + 12 * n_entries;
-          image.fill(left, upper, right, lower, white);
-          image.fill(left, upper, right, upper, black);
-          image.fill(left, lower, right, lower, black);
-          image.fill(left, upper, left, lower, black);
-          image.fill(right, upper, right, lower, black);
-          int row = 0;
-          for (const PlotSeries &s : panel.series)
-            if (!s.label.empty())
-              {
-                const int y    = upper + 9 + 12 * row++;
-                int       dash = 0;
-                if (s.line)
-                  draw_line(image,
-                            left + 8,
-                            y - 1,
-                            left + 8 + 24,
-                            y - 1,
-                            s.color,
-                            s.dashed ? &dash : nullptr);
-                if (s.markers)
-                  marker(image, left + 8 + 12, y - 1, s.color);
-                else if (!s.line)
-                  dot(image, left + 8 + 12, y - 1, s.color);
-                draw_text(image, s.label, left + 8 + 24 + 6, y - 3, black);
-              }
-        }
+      if (n_points < 2 || !(low < high))
+        return block;
+      const double coefficient =
+        std::exp(sum_log_y / n_points - order * sum_log_x / n_points);
+      block.x = {low, high};
+      block.y = {coefficient * std::pow(low, order), coefficient * std::pow(high, order)};
+      return block;
+    }
 
-      // Title (bold) and axis labels, centred on the box and cut to its size.
-      const int         middle  = (box_left + box_right) / 2;
-      const std::string title   = fit_text(panel.title, box_right - box_left - 1);
-      const std::string x_label = fit_text(panel.x_label, box_right - box_left);
-      const std::string y_label = fit_text(panel.y_label, box_bottom - box_top);
-      draw_text(image, title, middle - (text_width(title) + 1) / 2, top + 8, black, true);
-      draw_text(image,
-                x_label,
-                middle - text_width(x_label) / 2,
-                box_bottom + tick + 4 + glyph_rows + 6,
-                black);
-      draw_text(image,
-                y_label,
-                6,
-                (box_top + box_bottom) / 2 + text_width(y_label) / 2,
-                black,
-                false,
-                true);
+    std::vector<Block>
+    blocks_of(const PlotPanel &panel)
+    {
+      std::vector<Block> blocks;
+      for (const PlotSeries &series : panel.series)
+        {
+          Block             block{series.label, "", series.x, series.y};
+          const std::string color = " lc rgb \"" + hex_color(series.color) + "\"";
+          const std::string dash  = series.dashed ? " dt 2" : " dt 1";
+          if (series.line && series.markers)
+            block.style = "linespoints pt 7 ps 0.8 lw 2" + dash + color;
+          else if (series.line)
+            block.style = "lines lw 2" + dash + color;
+          else if (series.markers)
+            block.style = "points pt 7 ps 1" + color;
+          else
+            block.style = "points pt 7 ps 0.3" + color;
+          blocks.push_back(block);
+        }
+      if (panel.log_x && panel.log_y)
+        for (unsigned int k = 0; k < panel.reference_orders.size(); ++k)
+          blocks.push_back(reference_slope(panel, panel.reference_orders[k], k));
+      return blocks;
+    }
+
+    // Decades the drawable values of one coordinate span (0 if none).
+    double
+    decades(const std::vector<Block> &blocks, const bool use_x)
+    {
+      double low = std::numeric_limits<double>::infinity(), high = 0.;
+      for (const Block &block : blocks)
+        for (const double value : use_x ? block.x : block.y)
+          if (std::isfinite(value) && value > 0.)
+            {
+              low  = std::min(low, value);
+              high = std::max(high, value);
+            }
+      return high > 0. ? std::log10(high / low) : 0.;
+    }
+
+    // The axis' scale and tick labels.
+    void
+    write_axis(std::ostream             &script,
+               const char               *axis,
+               const bool                log,
+               const std::vector<Block> &blocks)
+    {
+      const bool use_x = axis[0] == 'x';
+      if (!log)
+        {
+          script << "unset logscale " << axis << "\nset format " << axis
+                 << " \"%g\"\nset " << axis << "tics autofreq\nset m" << axis
+                 << "tics default\n";
+          return;
+        }
+      script << "set logscale " << axis << " 10\n";
+      // 10^k at the decades when there are decades to label; within one, gnuplot's own
+      // ticks as plain numbers.
+      if (decades(blocks, use_x) >= 1.)
+        script << "set format " << axis << " \"10^{%L}\"\nset " << axis
+               << "tics 10\nset m" << axis << "tics 10\n";
+      else
+        script << "set format " << axis << " \"%g\"\nset " << axis
+               << "tics autofreq\nset m" << axis << "tics default\n";
+    }
+
+    // The drawing commands, the same for every terminal.
+    void
+    write_panels(std::ostream                          &script,
+                 const std::vector<PlotPanel>          &panels,
+                 const std::vector<std::vector<Block>> &blocks,
+                 const std::string                     &data,
+                 const unsigned int                     width,
+                 const unsigned int                     height)
+    {
+      // Margins in pixels, the same for every panel so that the boxes line up: 85 left
+      // for the tick labels and the y label, on the right room for the longest legend
+      // entry (at most 8 px a character at 11 pt, 90 for the sample and gaps; at most
+      // half the width), 45 above for the title, 65 below and 120 between panels for the
+      // tick labels, the x label and the next title.
+      std::size_t longest = 0;
+      for (const auto &panel_blocks : blocks)
+        for (const Block &block : panel_blocks)
+          longest = std::max(longest, block.title.size());
+      const double legend = std::min(0.5 * width, 90. + 8. * longest);
+      script << "set multiplot layout " << panels.size() << ",1 margins " << 85. / width
+             << ", " << 1. - (legend + 15.) / width << ", " << 65. / height << ", "
+             << 1. - 45. / height << " spacing 0, " << 120. / height << "\n"
+             << "set key at screen " << 1. - legend / width
+             << ", graph 1 left top vertical Left reverse samplen 3\n";
+      unsigned int index = 0;
+      for (std::size_t p = 0; p < panels.size(); ++p)
+        {
+          const PlotPanel &panel = panels[p];
+          script << "\n# panel " << p + 1 << "\nset title " << quoted(panel.title)
+                 << " noenhanced\nset xlabel " << quoted(panel.x_label)
+                 << " noenhanced\nset ylabel " << quoted(panel.y_label)
+                 << " noenhanced\n";
+          write_axis(script, "x", panel.log_x, blocks[p]);
+          write_axis(script, "y", panel.log_y, blocks[p]);
+          std::vector<std::string> plots;
+          for (const Block &block : blocks[p])
+            {
+              if (!block.x.empty())
+                plots.push_back(quoted(data) + " index " + std::to_string(index) +
+                                " using 1:2 with " + block.style +
+                                (block.title.empty()
+                                   ? " notitle"
+                                   : " title " + quoted(block.title) + " noenhanced"));
+              index += block.x.empty() ? 0 : 1;
+            }
+          if (plots.empty())
+            {
+              // Nothing to draw: an empty box that says so.
+              script << "unset logscale xy\nset label 1 \"no data\" at graph 0.5, 0.5 "
+                        "center\nplot [0:1] [0:1] NaN notitle\nunset label 1\n";
+              continue;
+            }
+          script << "plot ";
+          for (std::size_t k = 0; k < plots.size(); ++k)
+            script << (k == 0 ? "" : ", \\\n     ") << plots[k];
+          script << '\n';
+        }
+      script << "unset multiplot\n";
     }
   } // namespace
 
 
-  void
+  bool
   write_line_plot(const std::string            &file,
                   const std::vector<PlotPanel> &panels,
                   const unsigned int            width,
@@ -276,16 +237,94 @@ namespace clothsim::io
   {
     if (panels.empty())
       throw std::invalid_argument("write_line_plot: no panels for " + file);
-    if (width < 200 || panel_height < 120 || width > 20000 ||
-        panel_height * panels.size() > 100000)
-      throw std::invalid_argument("write_line_plot: image size out of range for " + file);
-    Image image(width, panel_height * panels.size());
-    for (std::size_t i = 0; i < panels.size(); ++i)
-      draw_panel(image, panels[i], i * panel_height, panel_height);
-    const std::string png = encode_png(image);
+    if (width < 200 || panel_height < 100)
+      throw std::invalid_argument("write_line_plot: " + std::to_string(width) + " x " +
+                                  std::to_string(panel_height) +
+                                  " pixels per panel is too small for " + file);
+    const std::filesystem::path path(file);
+    const std::string           directory =
+      path.has_parent_path() ? path.parent_path().string() : std::string(".");
+    const std::string stem = path.stem().string();
+    const std::string data = stem + ".dat", script_name = stem + ".gp";
+    const std::string png = path.filename().string(), svg = stem + ".svg";
 
-    write_file_atomically(file, [&png](std::ostream &out) {
-      out.write(png.data(), png.size());
+    std::vector<std::vector<Block>> blocks;
+    for (const PlotPanel &panel : panels)
+      blocks.push_back(blocks_of(panel));
+
+    // The data: one block per drawn line, separated by two blank lines (gnuplot's
+    // "index"); a blank line inside a block where a point cannot be drawn.
+    write_file_atomically(directory + "/" + data, [&](std::ostream &out) {
+      out << "# " << data << ": written by clothsim for " << png
+          << "; one block per line drawn (gnuplot index 0, 1, ...): x y\n";
+      unsigned int index = 0;
+      for (std::size_t p = 0; p < panels.size(); ++p)
+        for (const Block &block : blocks[p])
+          {
+            if (block.x.empty())
+              continue;
+            out << (index == 0 ? "" : "\n\n") << "# index " << index << ": panel "
+                << p + 1 << ", " << (block.title.empty() ? "(no title)" : block.title)
+                << '\n';
+            for (std::size_t i = 0; i < block.x.size(); ++i)
+              {
+                const double y = i < block.y.size() ? block.y[i] : std::nan("");
+                if (drawable(block.x[i], y, panels[p]))
+                  out << exact(block.x[i]) << ' ' << exact(y) << '\n';
+                else
+                  out << '\n';
+              }
+            ++index;
+          }
     });
+
+    const unsigned int height = panel_height * panels.size();
+    write_file_atomically(directory + "/" + script_name, [&](std::ostream &out) {
+      out << "# " << script_name << ": written by clothsim; draws " << png << " and "
+          << svg << " from " << data << ".\n# Run in this directory: gnuplot "
+          << script_name
+          << "\n# (clothsim passes -e \"suffix='.partial'\" and renames the files when "
+             "done)\nif (!exists(\"suffix\")) suffix = \"\"\n"
+          << "set encoding utf8\nset grid xtics ytics mxtics mytics lc rgb \"#e0e0e0\" "
+             "lw 1, lc "
+             "rgb \"#f0f0f0\" lw 1\nset border lw 1.2\nset tics nomirror out\n";
+      const std::string terminals[2][2] = {
+        {"pngcairo enhanced background rgb \"white\" font \"DejaVu Sans,11\"", png},
+        {"svg enhanced background rgb \"white\" font \"DejaVu Sans,11\"", svg}};
+      for (const auto &[terminal, output] : terminals)
+        {
+          out << "\nset terminal " << terminal << " size " << width << ',' << height
+              << "\nset output " << quoted(output) << ".suffix\n";
+          write_panels(out, panels, blocks, data, width, height);
+          out << "unset output\n";
+        }
+    });
+
+    // gnuplot writes *.partial; the pictures are renamed once both are complete.
+    const std::string reason = run_gnuplot(directory,
+                                           {"-e", "suffix='.partial'", script_name},
+                                           directory + "/" + stem + ".gnuplot.log");
+    bool              drawn  = reason.empty();
+    for (const std::string &picture : {png, svg})
+      {
+        const std::string partial = directory + "/" + picture + ".partial";
+        std::error_code   error;
+        if (drawn)
+          std::filesystem::rename(partial, directory + "/" + picture, error);
+        else
+          std::filesystem::remove(partial, error);
+        drawn = drawn && !error;
+      }
+    if (drawn)
+      {
+        std::error_code ignored;
+        std::filesystem::remove(directory + "/" + stem + ".gnuplot.log", ignored);
+      }
+    else
+      std::cerr << "clothsim: warning: " << file << " not drawn: "
+                << (reason.empty() ? std::string("cannot rename the pictures") : reason)
+                << "; the data and the script are in " << directory << "/" << data
+                << " and " << script_name << std::endl;
+    return drawn;
   }
 } // namespace clothsim::io
