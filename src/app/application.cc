@@ -7,6 +7,7 @@
 #include "app/command_line.h"
 #include "app/convergence_study.h"
 #include "app/model_comparison.h"
+#include "app/restart.h"
 #include "app/scene_runner.h"
 #include "app/speed_accuracy_sweep.h"
 #include "io/collective.h"
@@ -174,6 +175,12 @@ namespace clothsim
             return 0;
           }
 
+        if (command_line.action == CommandLine::Action::restart)
+          return run_restart(command_line.restart_directory,
+                             command_line.overrides,
+                             communicator,
+                             pcout);
+
         const std::string file = command_line.parameter_file.empty()
                                    ? default_parameter_file()
                                    : command_line.parameter_file;
@@ -203,8 +210,15 @@ namespace clothsim
         // All input is read and checked before anything is written.
         std::unique_ptr<Scene> scene =
           load_scene(file, command_line.overrides, communicator);
-        const RunOutcome outcome = run_loaded_scene(
-          *scene, file, output_directory(command_line, scene->input), pcout);
+        RunOptions options;
+        options.checkpoints = true;
+        const RunOutcome outcome =
+          run_loaded_scene(*scene,
+                           file,
+                           output_directory(command_line, scene->input),
+                           pcout,
+                           OutputWriter::FrameObserver(),
+                           options);
         return outcome.completed ? 0 : 2;
       }
     // Exit codes (README): 1 bad input, 2 the run failed (simulation, output, memory),

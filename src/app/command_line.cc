@@ -60,6 +60,11 @@ namespace clothsim
           command_line.fem_overrides.push_back(value());
         else if (argument == "--mass-spring-set")
           command_line.mass_spring_overrides.push_back(value());
+        else if (argument == "--restart")
+          {
+            command_line.action            = CommandLine::Action::restart;
+            command_line.restart_directory = value();
+          }
         else if (argument == "--output-dir")
           command_line.output_directory = value();
         else if (!argument.empty() && argument[0] == '-')
@@ -69,6 +74,12 @@ namespace clothsim
         else
           throw InputError("", argument, "only one parameter file may be given");
       }
+    if (command_line.action == CommandLine::Action::restart &&
+        !(command_line.parameter_file.empty() && command_line.output_directory.empty()))
+      throw InputError("",
+                       "--restart",
+                       "takes its parameters and output directory from DIR: no parameter "
+                       "file, no --output-dir");
     const bool convergence = command_line.action == CommandLine::Action::convergence;
     if (convergence && command_line.space_levels + command_line.time_levels == 0)
       throw InputError("",
@@ -130,6 +141,11 @@ namespace clothsim
            "(runtime\n"
            "      against error, Pareto front marked) and prints the fastest setting\n"
            "      for each error level.\n"
+           "  clothsim --restart DIR [--set \"Time/End time=T\"]...\n"
+           "      continue the run whose output directory is DIR from its last\n"
+           "      checkpoint (DIR/checkpoint.bin), on as many MPI ranks; --set may\n"
+           "      change 'Time/End time' and 'Output/Output interval', 'Checkpoint\n"
+           "      interval', 'Progress' only.\n"
            "  clothsim --print-parameters [json]\n"
            "      print every parameter with its default, allowed values and unit\n"
            "      (with json: one JSON object, sections holding entries, each entry\n"

@@ -9,6 +9,7 @@
 //            [--output-dir DIR]
 //   clothsim --sweep [PARAMS.prm] [--axis "A=1|A=2"]... [--reference-set ...]...
 //            [--set ...]... [--output-dir DIR]
+//   clothsim --restart DIR [--set "Time/End time=..."]...
 //   clothsim --print-parameters
 //   clothsim --help
 
@@ -27,7 +28,8 @@ namespace clothsim
       version,     // clothsim's version and git revision, the libraries' versions
       compare,     // the scene with both models side by side
       convergence, // mesh refinement and/or step halving study
-      sweep        // speed-accuracy sweep over a grid of settings
+      sweep,       // speed-accuracy sweep over a grid of settings
+      restart      // continue a run from its output directory's checkpoint
     };
     Action                   action             = Action::run;
     bool                     parameters_as_json = false; // --print-parameters json
@@ -36,6 +38,7 @@ namespace clothsim
     std::vector<std::string> fem_overrides;         // --fem-set: the fem run of --compare
     std::vector<std::string> mass_spring_overrides; // --mass-spring-set
     std::string              output_directory;      // empty: output/<scene name>
+    std::string              restart_directory;     // --restart DIR
     unsigned int             space_levels = 0;      // --space K: refinements +0..K
     unsigned int             time_levels  = 0;      // --time K: dt, dt/2, ..., dt/2^K
     // --axis "Section/Name=v1 | Section/Name=v2": one axis of the sweep's grid, its

@@ -1,5 +1,6 @@
 #include "app/scene_runner.h"
 
+#include "app/restart.h"
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 
@@ -59,8 +60,8 @@ namespace clothsim
     }
 
     // Creates the directory (an InputError if that is impossible, after removing any
-    // parent it created) and removes the frames of an earlier run in it (and any left
-    // under a temporary name).
+    // parent it created) and removes the frames and checkpoint of an earlier run in it
+    // (and any left under a temporary name).
     void
     prepare_output_directory(const std::string &directory)
     {
@@ -96,9 +97,10 @@ namespace clothsim
            entry.increment(error))
         {
           // Only the names a run writes: a directory given with --output-dir may hold
-          // other files.
+          // other files. An earlier run's checkpoint goes too: it is not this run's.
           static const std::regex frame_file(
-            "solution(-[0-9]{5}([.][0-9]{4})?[.](vtu|pvtu)|[.]pvd)([.]partial)?");
+            "(solution(-[0-9]{5}([.][0-9]{4})?[.](vtu|pvtu)|[.]pvd)|checkpoint[.]bin)"
+            "([.]partial)?");
           if (std::regex_match(entry->path().filename().string(), frame_file))
             fs::remove(entry->path(), error);
         }
@@ -106,6 +108,23 @@ namespace clothsim
         throw io::OutputError(directory,
                               "cannot remove the frames of an earlier run: " +
                                 error.message());
+    }
+
+    // parameters.prm: the run's provenance as comments, then every parameter's value,
+    // written whole.
+    void
+    write_parameter_copy(const std::string              &directory,
+                         const ParameterHandler         &prm,
+                         const std::vector<std::string> &provenance)
+    {
+      io::write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
+        for (const std::string &line : provenance)
+          out << "# " << line << "\n";
+        out << "\n";
+        std::ostringstream text;
+        prm.print_parameters(text, ParameterHandler::PRM);
+        out << without_unused_obstacles(text.str());
+      });
     }
 
     // original.prm (the input as given, with the command line's overrides) and
@@ -131,14 +150,7 @@ namespace clothsim
               out << "#   --set \"" << assignment << "\"\n";
           }
       });
-      io::write_file_atomically(directory + "/parameters.prm", [&](std::ostream &out) {
-        for (const std::string &line : provenance)
-          out << "# " << line << "\n";
-        out << "\n";
-        std::ostringstream text;
-        prm.print_parameters(text, ParameterHandler::PRM);
-        out << without_unused_obstacles(text.str());
-      });
+      write_parameter_copy(directory, prm, provenance);
     }
 
     // The time loop with its timer, then the run's figures. An output error or an
@@ -149,6 +161,7 @@ namespace clothsim
               const std::string                 &directory,
               ConditionalOStream                &pcout,
               const OutputWriter::FrameObserver &observer,
+              const RunOptions                  &options,
               std::exception_ptr                &stopped)
     {
       const MPI_Comm    communicator = scene.model->get_communicator();
@@ -166,14 +179,23 @@ namespace clothsim
                          model.output_piece(),
                          scene.probes,
                          model.energy_columns(),
-                         parameters.output.write_vtk);
+                         parameters.output.write_vtk,
+                         options.resume_run);
           output->set_frame_observer(observer);
           if (is_explicit(parameters.time.integrator))
             outcome.summary =
               ExplicitStepper(parameters, *scene.model, *output, pcout, timer).run();
           else
-            outcome.summary =
-              TimeStepper(parameters, *scene.model, *output, pcout, timer).run();
+            {
+              TimeStepper stepper(parameters, *scene.model, *output, pcout, timer);
+              if (options.checkpoints && supports_checkpoints(parameters))
+                stepper.enable_checkpoints(directory,
+                                           parameters.output.checkpoint_interval,
+                                           checkpoint_record(scene));
+              if (options.resume_run != nullptr)
+                stepper.restore(*options.resume_run, *options.resume_rank);
+              outcome.summary = stepper.run();
+            }
           outcome.completed = true;
         }
       catch (const SimulationError &error)
@@ -249,15 +271,26 @@ namespace clothsim
                    const std::string                 &file,
                    const std::string                 &directory,
                    ConditionalOStream                &pcout,
-                   const OutputWriter::FrameObserver &observer)
+                   const OutputWriter::FrameObserver &observer,
+                   const RunOptions                  &options)
   {
     const MPI_Comm    communicator = scene.model->get_communicator();
     const bool        is_root      = Utilities::MPI::this_mpi_process(communicator) == 0;
     const Parameters &parameters   = scene.parameters();
     const ClothModel &model        = *scene.model;
     const std::vector<std::string> provenance = io::provenance_lines(communicator);
+    if (options.checkpoints && parameters.output.checkpoint_interval > 0. &&
+        !supports_checkpoints(parameters))
+      throw InputError(file,
+                       "Output/Checkpoint interval",
+                       "checkpoints need an implicit integrator and no 'Contact/Self "
+                       "contact' (0 for this run)");
     io::run_collectively(communicator, [&]() {
-      if (is_root)
+      if (!is_root)
+        return;
+      if (options.resume_run != nullptr)
+        write_parameter_copy(directory, scene.prm, provenance);
+      else
         {
           prepare_output_directory(directory);
           write_input_copies(directory, scene.input, scene.prm, provenance);
@@ -302,9 +335,16 @@ namespace clothsim
     for (const ProbeLocation &probe : scene.probes)
       pcout << "  probe " << probe.name << " at vertex " << probe.reference_point << "\n";
     pcout << "  output: " << directory << std::endl;
+    if (options.resume_run != nullptr)
+      {
+        const std::vector<double> &loop = options.resume_run->get("loop");
+        pcout << "  restart from the checkpoint at step " << loop.at(1)
+              << ", t = " << loop.at(0) << std::endl;
+      }
 
     std::exception_ptr stopped;
-    const RunOutcome   outcome = run_steps(scene, directory, pcout, observer, stopped);
+    const RunOutcome   outcome =
+      run_steps(scene, directory, pcout, observer, options, stopped);
     if (stopped)
       std::rethrow_exception(stopped);
     return outcome;

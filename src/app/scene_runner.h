@@ -25,14 +25,26 @@ namespace clothsim
   };
 
 
-  // Runs `scene` (read from `file`) into `directory` (created; earlier frames removed).
-  // `observer` sees the state at every output time.
+  // Checkpoints and restarts (app/restart.h).
+  struct RunOptions
+  {
+    // Write checkpoints: every 'Output/Checkpoint interval' and when interrupted.
+    bool checkpoints = false;
+    // A restart: the checkpoint's run section and this rank's (io/checkpoint.h).
+    const io::CheckpointData *resume_run  = nullptr;
+    const io::CheckpointData *resume_rank = nullptr;
+  };
+
+  // Runs `scene` (read from `file`) into `directory` (created; earlier frames removed;
+  // a restart continues the files there instead). `observer` sees the state at every
+  // output time.
   RunOutcome
   run_loaded_scene(Scene                             &scene,
                    const std::string                 &file,
                    const std::string                 &directory,
                    ConditionalOStream                &pcout,
-                   const OutputWriter::FrameObserver &observer = {});
+                   const OutputWriter::FrameObserver &observer = {},
+                   const RunOptions                  &options  = {});
 
   // The 'Time/Integrator' name of an integrator.
   std::string

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <sstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace clothsim::io
@@ -80,6 +81,29 @@ namespace clothsim::io
     length     = 0;
     descriptor = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND, 0644);
     if (descriptor < 0)
+      throw OutputError(path, system_reason());
+  }
+
+
+  void
+  RowFile::reopen_at(const std::string &path, const long long kept)
+  {
+    if (descriptor >= 0)
+      ::close(descriptor);
+    file_path  = path;
+    length     = kept;
+    descriptor = ::open(path.c_str(), O_WRONLY | O_APPEND);
+    if (descriptor < 0)
+      throw OutputError(path, system_reason());
+    struct stat status;
+    if (::fstat(descriptor, &status) != 0)
+      throw OutputError(path, system_reason());
+    if (status.st_size < kept)
+      throw OutputError(path,
+                        "shorter (" + std::to_string(status.st_size) +
+                          " bytes) than at the checkpoint (" + std::to_string(kept) +
+                          " bytes)");
+    if (::ftruncate(descriptor, kept) != 0)
       throw OutputError(path, system_reason());
   }
 

@@ -50,6 +50,19 @@ namespace clothsim::io
     void
     open(const std::string &path);
 
+    // Opens an existing file to append after its first `length` bytes (a restart: the
+    // rows an interrupted run wrote after its checkpoint are cut off). OutputError if
+    // the file is shorter.
+    void
+    reopen_at(const std::string &path, const long long length);
+
+    // Bytes of complete rows written.
+    long long
+    size() const
+    {
+      return length;
+    }
+
     // Appends `text` (one or more whole rows) with one write; on failure the file is cut
     // back to its previous length and OutputError is thrown.
     void

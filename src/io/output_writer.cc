@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <regex>
 #include <sstream>
 
 namespace clothsim
@@ -18,7 +19,8 @@ namespace clothsim
                              const io::SurfacePiece           &piece,
                              const std::vector<ProbeLocation> &probes,
                              const std::vector<std::string>   &energy_columns,
-                             const bool                        write_vtk)
+                             const bool                        write_vtk,
+                             const io::CheckpointData         *resume)
     : directory(directory)
     , communicator(communicator)
     , piece(piece)
@@ -27,6 +29,11 @@ namespace clothsim
     , write_vtk(write_vtk)
     , is_root(Utilities::MPI::this_mpi_process(communicator) == 0)
   {
+    if (resume != nullptr)
+      {
+        continue_from(*resume);
+        return;
+      }
     io::run_collectively(communicator, [&]() {
       if (!is_root)
         return;
@@ -40,6 +47,69 @@ namespace clothsim
       for (const std::string &column : energy_columns)
         header += ',' + column;
       statistics_csv.append(header + '\n');
+    });
+  }
+
+
+  void
+  OutputWriter::save(io::CheckpointData &run) const
+  {
+    std::vector<double> times;
+    std::string         names;
+    for (const auto &[time, name] : frames)
+      {
+        times.push_back(time);
+        names += name + '\n';
+      }
+    run.set("output frame times", times);
+    run.set_text("output frame files", names);
+    run.set("output probes.csv bytes", static_cast<double>(probes_csv.size()));
+    run.set("output statistics.csv bytes", static_cast<double>(statistics_csv.size()));
+  }
+
+
+  void
+  OutputWriter::continue_from(const io::CheckpointData &resume)
+  {
+    const std::vector<double> &times = resume.get("output frame times");
+    std::istringstream         names(resume.get_text("output frame files"));
+    frames.clear();
+    for (const double time : times)
+      {
+        std::string name;
+        std::getline(names, name);
+        frames.emplace_back(time, name);
+      }
+    const long long probe_bytes      = resume.get_number("output probes.csv bytes");
+    const long long statistics_bytes = resume.get_number("output statistics.csv bytes");
+    io::run_collectively(communicator, [&]() {
+      if (!is_root)
+        return;
+      probes_csv.reopen_at(directory + "/probes.csv", probe_bytes);
+      statistics_csv.reopen_at(directory + "/statistics.csv", statistics_bytes);
+      // Frames written after the checkpoint (their pieces and records) go; the new ones
+      // take their numbers.
+      namespace fs = std::filesystem;
+      const std::regex frame_file(
+        "solution-([0-9]{5})([.][0-9]{4})?[.](vtu|pvtu)([.]partial)?");
+      std::error_code error;
+      for (fs::directory_iterator entry(directory, error), end; !error && entry != end;
+           entry.increment(error))
+        {
+          std::smatch       match;
+          const std::string name = entry->path().filename().string();
+          if (std::regex_match(name, match, frame_file) &&
+              std::stoul(match[1].str()) >= frames.size())
+            fs::remove(entry->path(), error);
+        }
+      if (error)
+        throw io::OutputError(directory,
+                              "cannot remove the frames written after the checkpoint: " +
+                                error.message());
+      if (write_vtk)
+        io::write_file_atomically(directory + "/solution.pvd", [this](std::ostream &out) {
+          DataOutBase::write_pvd_record(out, frames);
+        });
     });
   }
 

@@ -11,6 +11,7 @@
 
 #include <deal.II/lac/trilinos_vector.h>
 
+#include "io/checkpoint.h"
 #include "io/output_file.h"
 #include "io/probe_location.h"
 #include "io/vtu_writer.h"
@@ -50,12 +51,22 @@ namespace clothsim
   public:
     // `piece`: this rank's triangles for the VTK frames; `energy_columns`: the columns
     // of statistics.csv after the fixed ones (one per StepStatistics::term_energies).
+    // With `resume` (a restart: the run's section of the checkpoint, see save()), the
+    // directory's files continue from the checkpoint: the CSV files are cut back to
+    // their rows at that time, later frames are removed, solution.pvd lists the frames
+    // up to it.
     OutputWriter(const std::string                &directory,
                  const MPI_Comm                    communicator,
                  const io::SurfacePiece           &piece,
                  const std::vector<ProbeLocation> &probes,
                  const std::vector<std::string>   &energy_columns,
-                 const bool                        write_vtk);
+                 const bool                        write_vtk,
+                 const io::CheckpointData         *resume = nullptr);
+
+    // The output counters for a checkpoint (records "output ..."): the frames written
+    // (times and file names) and the bytes of probes.csv and statistics.csv (rank 0's).
+    void
+    save(io::CheckpointData &run) const;
 
     // VTK frame (if enabled; `fields` is called for its data) and probe rows for the
     // displacement u (ghosted).
@@ -67,6 +78,12 @@ namespace clothsim
 
     void
     write_statistics(const StepStatistics &row);
+
+    const std::string &
+    get_directory() const
+    {
+      return directory;
+    }
 
     // Called with every written state (time, ghosted displacement), e.g. to compare runs.
     using FrameObserver =
@@ -85,6 +102,10 @@ namespace clothsim
     print_summary(std::ostream &out) const;
 
   private:
+    // The restart's part of the constructor (see there).
+    void
+    continue_from(const io::CheckpointData &resume);
+
     const std::string                           directory;
     const MPI_Comm                              communicator;
     const io::SurfacePiece                      piece;

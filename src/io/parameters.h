@@ -270,6 +270,7 @@ namespace clothsim
     std::string        progress;                    // "auto", "on", "off"
     double             drape_disc_radius;           // m; 0: no drape coefficient
     bool               check_intersections = false; // count intersecting triangle pairs
+    double             checkpoint_interval = 0.;    // s; 0: only when interrupted
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -91,6 +91,15 @@ namespace clothsim
       "Convergence studies (clothsim --convergence) measure the probes' errors "
       "against them; runs ignore them.");
     prm.declare_entry(
+      "Checkpoint interval",
+      "0",
+      Patterns::Double(0., 1e9),
+      "Simulated time in s between checkpoints (0: none, except when the run is "
+      "interrupted). A checkpoint, checkpoint.bin in the output directory, holds the "
+      "run's whole state; clothsim --restart DIR continues the run from the last "
+      "one, bit-identically. With a positive interval the end state is one too. "
+      "Implicit integrators only.");
+    prm.declare_entry(
       "Progress",
       "auto",
       Patterns::Selection("auto|lines|off"),
@@ -126,7 +135,8 @@ namespace clothsim
         probe->has_reference          = true;
         probe->reference_displacement = u;
       }
-    progress = prm.get("Progress");
+    progress            = prm.get("Progress");
+    checkpoint_interval = prm.get_double("Checkpoint interval");
     prm.leave_subsection();
   }
 } // namespace clothsim

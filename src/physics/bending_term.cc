@@ -98,6 +98,30 @@ namespace clothsim::physics
   }
 
 
+  std::vector<double>
+  BendingTerm::saved_state() const
+  {
+    std::vector<double> state;
+    state.reserve(3 * references.size());
+    for (const Tensor<1, 3> &reference : references)
+      for (unsigned int c = 0; c < 3; ++c)
+        state.push_back(reference[c]);
+    return state;
+  }
+
+
+  void
+  BendingTerm::restore_state(const std::vector<double> &state)
+  {
+    AssertThrow(state.size() == 3 * references.size(),
+                ExcMessage(
+                  "the director references of a checkpoint do not fit the mesh"));
+    for (unsigned int k = 0; k < references.size(); ++k)
+      for (unsigned int c = 0; c < 3; ++c)
+        references[k][c] = state[3 * k + c];
+  }
+
+
   double
   BendingTerm::step_cap(const VectorType &u, const VectorType &direction) const
   {

@@ -46,6 +46,12 @@ namespace clothsim::physics
     void
     commit_step(const VectorType &u, VectorType &u_owned) override;
 
+    // The edges' reference vectors r_E (3 numbers per edge slot).
+    std::vector<double>
+    saved_state() const override;
+    void
+    restore_state(const std::vector<double> &state) override;
+
     // With a barrier in the director function ('tangent', 'half tangent'): no Newton
     // update may carry a tilt across it (tilt_step_bound on every triangle).
     bool

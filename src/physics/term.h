@@ -139,6 +139,19 @@ namespace clothsim::physics
     commit_step(const VectorType & /*u*/, VectorType & /*u_owned*/)
     {}
 
+    // What the term carries from one step to the next beyond the state vectors (this
+    // rank's part; e.g. the shell's director references), for a checkpoint to restart
+    // from; empty: nothing. restore_state takes back what saved_state gave, on the same
+    // mesh and partition.
+    virtual std::vector<double>
+    saved_state() const
+    {
+      return {};
+    }
+    virtual void
+    restore_state(const std::vector<double> & /*state*/)
+    {}
+
     // Whether the term limits Newton's line search (a barrier whose argument must not
     // jump across it), and by how much: the largest α <= 1 from u along `direction` (both
     // ghosted), for this rank's part (Model::largest_step takes the minimum over ranks).

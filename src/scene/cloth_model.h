@@ -274,8 +274,18 @@ namespace clothsim
              physics::RankVector &damping_force) const override;
     io::FrameData
     output_fields(const VectorType &u, const VectorType &v) const override;
+    // (scene/cloth_model_checkpoint.cc)
+    void
+    save_state(io::CheckpointData &rank) const override;
+    void
+    restore_state(const io::CheckpointData &rank) override;
 
   private:
+    // The mesh and partition as this rank holds them: MPI ranks, dofs (global, owned),
+    // triangles and a hash of their dofs and reference corners.
+    std::vector<double>
+    fingerprint() const;
+
     // Chooses and adds the terms the scene needs.
     void
     add_terms(const std::string &parameter_file, const mesh::MeshGroups &groups);

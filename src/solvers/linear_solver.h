@@ -53,6 +53,19 @@ namespace clothsim
       force_rebuild = true;
     }
 
+    // Whether MUMPS still uses the definite factorisation (see `definite`), and setting
+    // it (a restart continues with the run's choice; before the first factorisation).
+    bool
+    definite_factorization() const
+    {
+      return definite;
+    }
+    void
+    set_definite_factorization(const bool is_definite)
+    {
+      Assert(!mumps, ExcInternalError());
+      definite = is_definite;
+    }
     // The matrix's sparsity changed (self-contact pairs): the next
     // update_preconditioner analyses it afresh.
     void

@@ -109,6 +109,26 @@ namespace clothsim
     void
     invalidate_tangent(const bool rescaled = false);
 
+    // What a fresh solver would do next: a new tangent and a new AMG hierarchy, as
+    // after a restart from a checkpoint (which stores neither). A run calls it after
+    // writing a checkpoint, so that it goes on exactly as its restart does.
+    void
+    renew()
+    {
+      tangent_state = TangentState{};
+      linear_solver.rebuild_next();
+    }
+    // MUMPS' choice of factorisation, which a checkpoint keeps (LinearSolver).
+    bool
+    definite_factorization() const
+    {
+      return linear_solver.definite_factorization();
+    }
+    void
+    set_definite_factorization(const bool definite)
+    {
+      linear_solver.set_definite_factorization(definite);
+    }
     // The tangent matrix's sparsity changed: the next solve analyses it afresh.
     void
     sparsity_changed()

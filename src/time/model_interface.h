@@ -7,6 +7,7 @@
 
 #include <deal.II/lac/affine_constraints.h>
 
+#include "io/checkpoint.h"
 #include "io/vtu_writer.h"
 #include "physics/term.h"
 #include "solvers/linear_solver.h"
@@ -166,6 +167,15 @@ namespace clothsim
              const VectorType    &v,
              const double         dissipated,
              physics::RankVector &damping_force) const = 0;
+
+    // This rank's part of a checkpoint (io/checkpoint.h): what the terms carry from step
+    // to step (physics::Term::saved_state) and a fingerprint of the mesh and partition.
+    virtual void
+    save_state(io::CheckpointData &rank) const = 0;
+    // Takes it back on a restart; InputError (naming the checkpoint) if the fingerprint
+    // differs: the mesh, its refinement or the partition is not the checkpoint's.
+    virtual void
+    restore_state(const io::CheckpointData &rank) = 0;
 
     // The fields of an output frame at (u, v), ghosted.
     virtual io::FrameData

@@ -155,7 +155,7 @@ namespace clothsim
                              energies.elastic,
                              energies.potential,
                              energies.columns,
-                             wall_clock.wall_time(),
+                             wall_offset + wall_clock.wall_time(),
                              figures.rejected,
                              figures.error_estimate,
                              spent.first,
@@ -176,17 +176,46 @@ namespace clothsim
 
 
   void
-  StepperCore::stop_if_interrupted(const unsigned int step, const double time)
+  StepperCore::save_core(io::CheckpointData &run) const
+  {
+    run.set("core dissipated", dissipated);
+    run.set("core frame step", frame_step);
+    run.set("core any frame", any_frame ? 1. : 0.);
+    run.set("core wall seconds", wall_offset + wall_clock.wall_time());
+  }
+
+
+  void
+  StepperCore::restore_core(const io::CheckpointData &run)
+  {
+    dissipated  = run.get_number("core dissipated");
+    frame_step  = static_cast<unsigned int>(run.get_number("core frame step"));
+    any_frame   = run.get_number("core any frame") != 0.;
+    wall_offset = run.get_number("core wall seconds");
+    wall_clock.restart();
+  }
+
+
+  void
+  StepperCore::stop_if_interrupted(const unsigned int           step,
+                                   const double                 time,
+                                   const std::function<void()> &checkpoint)
   {
     const int signal = received_signal(model.get_communicator());
     if (signal == 0)
       return;
+    // The checkpoint first: the frame written for the interruption is not one the
+    // uninterrupted run would write, and a restart replaces it.
+    if (checkpoint)
+      checkpoint();
     if (!any_frame || frame_step != step)
       write_frame(step, time);
     std::ostringstream message;
     message << "interrupted by " << signal_name(signal) << " after step " << step
             << " (t = " << time << "); its state is the last frame, and every file "
             << "written is complete";
+    if (checkpoint)
+      message << "; continue it with clothsim --restart " << output.get_directory();
     throw Interrupted(signal, message.str());
   }
 

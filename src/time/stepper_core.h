@@ -7,11 +7,13 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include "io/checkpoint.h"
 #include "io/output_writer.h"
 #include "io/parameters.h"
 #include "time/interruption.h"
 #include "time/model_interface.h"
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -145,11 +147,23 @@ namespace clothsim
     void
     write_frame(const unsigned int step, const double time);
 
-    // After every step attempt: if SIGINT or SIGTERM arrived on any rank, writes the
-    // frame of the last accepted state (step, time; u_ghosted, v_ghosted) unless it is
-    // written, and throws Interrupted. Collective.
+    // After every step attempt: if SIGINT or SIGTERM arrived on any rank, calls
+    // `checkpoint` (if given: the state to continue from), writes the frame of the last
+    // accepted state (step, time; u_ghosted, v_ghosted) unless it is written, and throws
+    // Interrupted. Collective.
     void
-    stop_if_interrupted(const unsigned int step, const double time);
+    stop_if_interrupted(const unsigned int           step,
+                        const double                 time,
+                        const std::function<void()> &checkpoint = {});
+
+    // The shared part of a checkpoint (io/checkpoint.h): the dissipated work, the frame
+    // bookkeeping, the wall time so far; and its restoration (a restart: the state
+    // then continues from u_ghosted, v_ghosted as set by the stepper, and the wall time
+    // of statistics.csv from the checkpoint's).
+    void
+    save_core(io::CheckpointData &run) const;
+    void
+    restore_core(const io::CheckpointData &run);
 
     // Stops the run (SimulationError) when the step size `dt` that the run would take
     // next falls below the floor 'Minimum time step fraction' x the nominal step
@@ -166,6 +180,7 @@ namespace clothsim
     ConditionalOStream &pcout;
     TimerOutput        &timer;
     Timer               wall_clock;
+    double              wall_offset = 0.; // s: the wall time before a restart
 
     VectorType u_ghosted, v_ghosted; // the current state
     double     dissipated = 0.;      // J, work done against damping so far

@@ -361,52 +361,66 @@ namespace clothsim
   TimeStepper::run()
   {
     const double end = dynamic ? parameters.time.end_time : 1.;
-    control.nominal =
-      dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
-    first_step                     = control.nominal;
+    first_step = dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
+    if (!resumed)
+      control.nominal = first_step;
     const bool adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;
     const bool adaptive            = dynamic && parameters.time.adaptive_time_steps;
     const bool bdf2_fixed_steps =
       !adaptive && parameters.time.integrator == Integrator::bdf2;
     const double largest_increment = 4. / parameters.time.load_steps;
     const double output_interval   = dynamic ? parameters.output.interval : 0.;
-    const double epsilon           = 1e-9 * control.nominal;
+    const double epsilon           = 1e-9 * first_step;
+    const auto   checkpoint        = [this]() { write_checkpoint(); };
+    const std::function<void()> checkpoint_on_interruption =
+      checkpoint_directory.empty() ? std::function<void()>() : checkpoint;
 
-    RunSummary summary;
-    Progress   progress(std::cout,
+    Progress progress(std::cout,
                       parameters.output.progress,
                       Utilities::MPI::this_mpi_process(model.get_communicator()) == 0);
 
-    // Initial state (static mode: the reference configuration, pins at λ = 0).
-    if (dynamic)
-      model.initial_state(u_n, v_n);
-    else
+    if (!resumed)
       {
-        u_n = 0.;
-        v_n = 0.;
-        model.apply_pinned_displacement(0., u_n);
+        // Initial state (static mode: the reference configuration, pins at λ = 0).
+        if (dynamic)
+          model.initial_state(u_n, v_n);
+        else
+          {
+            u_n = 0.;
+            v_n = 0.;
+            model.apply_pinned_displacement(0., u_n);
+          }
+        previous_step = 0.;
+        write_first_frame(u_n, v_n);
+        summary              = RunSummary();
+        loop                 = LoopState();
+        loop.next_output     = output_interval;
+        loop.next_checkpoint = checkpoint_interval;
       }
-    previous_step = 0.;
-    write_first_frame(u_n, v_n);
-    double next_output = output_interval;
 
-    double       time = 0.;
-    unsigned int step = 0;
-    StepTimes    step_times(timer);
+    double       &time = loop.time;
+    unsigned int &step = loop.step;
+    StepTimes     step_times(timer);
     step_times.since_last();
+    // A restart enters the loop of sub-steps where the checkpoint was taken.
+    bool enter_sub_steps = resumed;
     while (time < end - epsilon)
       {
         // One nominal step, in 2^k sub-steps if Newton needs smaller ones (BDF2 at fixed
         // steps: k starts one below the last nominal step's).
-        control.carried =
-          bdf2_fixed_steps ? std::max(control.carried + control.halvings, 1u) - 1 : 0;
-        control.restart(time, control.nominal, end);
-        control.next                 = control.nominal;
-        unsigned int last_iterations = 0;
-        unsigned int failed_attempts = 0; // since the last accepted step
+        if (!enter_sub_steps)
+          {
+            control.carried =
+              bdf2_fixed_steps ? std::max(control.carried + control.halvings, 1u) - 1 : 0;
+            control.restart(time, control.nominal, end);
+            control.next         = control.nominal;
+            loop.last_iterations = 0;
+            loop.failed_attempts = 0;
+          }
+        enter_sub_steps = false;
         while (time < control.target - epsilon)
           {
-            stop_if_interrupted(step, time);
+            stop_if_interrupted(step, time, checkpoint_on_interruption);
             const double dt = std::min(control.target - time, control.size());
             const double time_new =
               (control.target - time - dt < epsilon) ? control.target : time + dt;
@@ -418,12 +432,12 @@ namespace clothsim
             summary.newton_iterations += result.iterations;
             summary.linear_iterations += result.linear_iterations;
             summary.tangents += result.tangents;
-            last_iterations = result.iterations;
+            loop.last_iterations = result.iterations;
             if (!result.converged)
               {
                 progress.finish();
                 halve_step(result, time, time_new, step, summary);
-                ++failed_attempts;
+                ++loop.failed_attempts;
                 continue;
               }
 
@@ -442,21 +456,29 @@ namespace clothsim
             figures.newton_iterations = result.iterations;
             figures.linear_iterations = result.linear_iterations;
             figures.residual          = result.residual_norm;
-            figures.retries           = failed_attempts;
+            figures.retries           = loop.failed_attempts;
             figures.rejected          = control.rejected;
             figures.error_estimate    = attempt.error_estimate;
             record(step, time, dt_taken, figures, current_energies(), step_times);
-            control.rejected = 0;
-            failed_attempts  = 0;
+            control.rejected     = 0;
+            loop.failed_attempts = 0;
             summary.estimated_error += attempt.error_estimate;
             if (adaptive) // the controller's step replaces any halvings of this one
               control.restart(time, control.next, end);
             if (time >= end - epsilon || output_interval == 0. ||
-                time >= next_output - epsilon)
+                time >= loop.next_output - epsilon)
               {
                 write_frame(step, time);
-                while (next_output <= time + epsilon && output_interval > 0.)
-                  next_output += output_interval;
+                while (loop.next_output <= time + epsilon && output_interval > 0.)
+                  loop.next_output += output_interval;
+              }
+            // A checkpoint every 'Checkpoint interval' and at the end.
+            if (checkpoint_interval > 0. &&
+                (time >= end - epsilon || time >= loop.next_checkpoint - epsilon))
+              {
+                while (loop.next_checkpoint <= time + epsilon)
+                  loop.next_checkpoint += checkpoint_interval;
+                write_checkpoint();
               }
             std::ostringstream state;
             state << "step " << step << "  " << (dynamic ? "t = " : "load = ")
@@ -469,7 +491,7 @@ namespace clothsim
           {
             if (control.halvings > 0)
               control.nominal /= std::pow(2., control.halvings);
-            else if (last_iterations <= 6)
+            else if (loop.last_iterations <= 6)
               control.nominal = std::min(1.5 * control.nominal, largest_increment);
           }
       }

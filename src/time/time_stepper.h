@@ -7,7 +7,8 @@
 //            triangle, halves the step (up to 'Maximum step halvings', and says so)
 //   accept or reject   the local error estimate against the tolerance (adaptive steps)
 //   commit   shift the state, strain limit, the terms' after-step hooks
-//   record   statistics.csv, and the VTK frame and probes at output times
+//   record   statistics.csv, and the VTK frame and probes at output times; a checkpoint
+//            at checkpoint times (time/time_stepper_checkpoint.cc)
 // Backward Euler (Gast & Schroeder 2014's optimisation form):
 //   û = u_n + dt v_n,   u_{n+1} = argmin Φ(u) with w_i = 1/dt², w_d = 1/dt,   v_{n+1} =
 //   (u_{n+1} - u_n)/dt.
@@ -38,9 +39,25 @@ namespace clothsim
                 ConditionalOStream &pcout,
                 TimerOutput        &timer);
 
-    // Runs the whole simulation from the initial state.
+    // Runs the whole simulation from the initial state, or from the checkpoint given to
+    // restore().
     RunSummary
     run();
+
+    // Checkpoints (io/checkpoint.h; time/time_stepper_checkpoint.cc): every `interval`
+    // of simulated time (0: none) and at the end if so, and when the run is interrupted,
+    // into `directory`, each with the records of `run_record` (the run's parameters).
+    // After writing one the solver renews its tangent and AMG hierarchy, as a restart
+    // does.
+    void
+    enable_checkpoints(const std::string        &directory,
+                       const double              interval,
+                       const io::CheckpointData &run_record);
+
+    // Continue from a checkpoint (before run()): the state, the step controller and the
+    // loop's counters. The output writer continues from the same records itself.
+    void
+    restore(const io::CheckpointData &run, const io::CheckpointData &rank);
 
   private:
     // The outcome of one attempted step.
@@ -133,6 +150,29 @@ namespace clothsim
         return nominal / std::pow(2., carried + halvings);
       }
     };
+
+    // Writes a checkpoint of the state at the top of the step loop (collective).
+    void
+    write_checkpoint();
+
+    // Where the step loop is: what a checkpoint stores besides the vectors and the step
+    // control, so that a restart enters the loop where the run left it.
+    struct LoopState
+    {
+      double       time            = 0.; // s (load factor in static mode)
+      unsigned int step            = 0;
+      double       next_output     = 0.; // s: the next frame's time
+      double       next_checkpoint = 0.; // s
+      unsigned int last_iterations = 0;  // Newton's, of the last attempt
+      unsigned int failed_attempts = 0;  // since the last accepted step
+    };
+    LoopState  loop;
+    RunSummary summary;
+    bool       resumed = false; // restore() was called
+    // Checkpoints: the directory (empty: none), the interval, the run's own records.
+    std::string        checkpoint_directory;
+    double             checkpoint_interval = 0.;
+    io::CheckpointData checkpoint_record;
 
     MatrixType   tangent;
     MatrixType   path_tangent; // the average vector field's second node (step_problem.h)
