@@ -2,6 +2,7 @@
 
 #include "io/input_error.h"
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -83,7 +84,16 @@ namespace clothsim::mesh
       }
     if (child == 0)
       {
-        // The child: no MPI, no destructors of the parent's objects (_exit).
+        // The child: no MPI, no destructors of the parent's objects (_exit). A crash
+        // kills it at once: MPI's handlers of fatal signals, inherited from the parent,
+        // print a backtrace, which can deadlock on a heap that the crash corrupted (seen:
+        // gmsh's "double free or corruption" on a fuzzed .msh, then a hang).
+        for (const int fatal : {SIGSEGV, SIGABRT, SIGBUS, SIGFPE, SIGILL})
+          std::signal(fatal, SIG_DFL);
+        // What the child has to say goes through the pipe; glibc's report of a corrupted
+        // heap would come before the parent's one-line error.
+        if (const int null = ::open("/dev/null", O_WRONLY); null >= 0)
+          ::dup2(null, STDERR_FILENO);
         ::close(channel[0]);
         int status = 0;
         try
