@@ -18,7 +18,7 @@ using namespace clothsim::test;
 
 namespace
 {
-  const std::string default_prm = source_path("params/default.prm");
+  const std::string default_prm = source_path("params/hanging-sheet.prm");
   const std::string directory   = scratch_directory("clothsim-explicit-integrators");
 
   bool

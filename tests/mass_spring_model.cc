@@ -1,7 +1,7 @@
 // The mass-spring model assembled on meshes (scene/spring_network.h), against finite
 // differences, the lattice theory of physics/mass_spring.h and the continuum:
 // 1. Gradient and exact Hessian of the assembled potential (structural and cross springs,
-//    gravity) against central differences on the default sheet, displaced at random.
+//    gravity) against central differences on the hanging sheet, displaced at random.
 // 2. Small homogeneous strains of an equilateral-triangle sheet (the regular mesh the
 //    derivation assumes): the effective plane-stress stiffnesses C11 (uniaxial strain,
 //    laterally held), E_eff = C11 - C12²/C22 (uniaxial stress: force per unit width per
@@ -28,7 +28,7 @@ using namespace clothsim::test;
 
 namespace
 {
-  const std::string default_prm = source_path("params/default.prm");
+  const std::string default_prm = source_path("params/hanging-sheet.prm");
 
   Parameters
   default_parameters()

@@ -33,7 +33,7 @@ using namespace clothsim::test;
 
 namespace
 {
-  const std::string scene               = source_path("params/default.prm");
+  const std::string scene               = source_path("params/hanging-sheet.prm");
   const std::string directory           = scratch_directory("clothsim-newton-variants");
   const std::vector<std::string> probes = {"top_middle", "center", "bottom_corner"};
 

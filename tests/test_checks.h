@@ -43,7 +43,7 @@ namespace clothsim::test
   // ---------------------------------------------------------------------------------
   // Set-up
 
-  // A file of the source tree, e.g. source_path("params/default.prm").
+  // A file of the source tree, e.g. source_path("params/hanging-sheet.prm").
   inline std::string
   source_path(const std::string &relative)
   {

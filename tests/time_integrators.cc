@@ -194,7 +194,7 @@ namespace
   bool
   check_single_step(ConditionalOStream &pcout)
   {
-    const std::string   scene = source_path("params/default.prm");
+    const std::string   scene = source_path("params/hanging-sheet.prm");
     std::vector<double> differences;
     for (const double dt : {1. / 240., 1. / 30.})
       {

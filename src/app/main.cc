@@ -5,8 +5,8 @@
 // Newton (NOX) and algebraic multigrid (ML), and writes VTK for ParaView. Sample command
 // lines:
 //   clothsim                                   # params/default.prm
-//   clothsim params/default.prm --set "Time/End time=0.5" --output-dir /tmp/run
-//   mpirun -np 2 clothsim params/default.prm
+//   clothsim params/hanging-sheet.prm --set "Time/End time=0.5" --output-dir /tmp/run
+//   mpirun -np 2 clothsim params/hanging-sheet.prm
 //   clothsim --print-parameters
 
 #include <deal.II/base/mpi.h>

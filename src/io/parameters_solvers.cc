@@ -187,7 +187,7 @@ namespace clothsim
       Patterns::Double(1.1, 1000.),
       "The Chebyshev smoother damps eigenvalues in [λ_max / range, λ_max] of "
       "each level (ML's 'smoother: Chebyshev alpha'). 20 keeps the CG iteration "
-      "count flat under refinement on the default scene; ML's usual 10 gives "
+      "count flat under refinement on the hanging sheet; ML's usual 10 gives "
       "fewer iterations on coarse meshes and about 30 % more per refinement.");
     prm.declare_entry(
       "AMG coarse size",

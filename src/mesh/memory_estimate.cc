@@ -17,7 +17,7 @@ namespace clothsim::mesh
     // size" of clothsim (Release, deal.II 9.4, Trilinos 13.2; End time = 0.05 s, Write
     // VTK = false) between refinement levels, which leaves out the process's own
     // footprint (about 210 MB at level 0, already taken when the estimate is made):
-    //   params/default.prm (membrane, CG + AMG), one rank:
+    //   params/hanging-sheet.prm (membrane, CG + AMG), one rank:
     //     level 0:   5,402 triangles,   219 MB     level 1:  21,608 triangles,   284 MB
     //     level 2:  86,432 triangles,   550 MB     level 3: 345,728 triangles, 1,598 MB
     //     -> 3.99, 4.10, 4.04 kB per added triangle
@@ -29,9 +29,9 @@ namespace clothsim::mesh
     constexpr double membrane_bytes_per_triangle = 4.14e3;
     constexpr double shell_bytes_per_triangle    = 13.6e3;
     // The part that every rank holds in full under MPI (each rank refines the whole mesh
-    // before keeping its part). params/default.prm on two ranks, largest rank: 404 MB at
-    // level 2, 1,017 MB at level 3, 2.36 kB per added triangle against 4.04 on one rank:
-    // a + b = 4.04, a + b/2 = 2.36 gives a replicated a = 0.69 kB, 17 %.
+    // before keeping its part). params/hanging-sheet.prm on two ranks, largest rank: 404
+    // MB at level 2, 1,017 MB at level 3, 2.36 kB per added triangle against 4.04 on one
+    // rank: a + b = 4.04, a + b/2 = 2.36 gives a replicated a = 0.69 kB, 17 %.
     constexpr double replicated_fraction = 0.17;
 
 

@@ -5,7 +5,7 @@
 // its mean normal through its centroid (the membrane's in-plane elasticity has it in its
 // kernel). Rotations about in-plane axes are left out: they bend, and a tensioned
 // membrane resists them like a Laplacian (with all six rigid modes ML's CG diverged on
-// the default scene). Other unknowns (director angles) get zero.
+// the hanging sheet). Other unknowns (director angles) get zero.
 
 #include "solvers/linear_solver.h"
 

@@ -213,7 +213,7 @@ namespace clothsim
       pcout << "warning: the time step " << dt << " s is within "
             << 100. * (1. - safe_fraction)
             << " % of the critical step: large motions can still make the run diverge "
-               "(on the default sheet 0.98 x critical diverged after 0.94 s)"
+               "(on the hanging sheet 0.98 x critical diverged after 0.94 s)"
             << std::endl;
 
     RunSummary summary;

@@ -14,9 +14,9 @@
 // Euler). ω_max comes from power iteration on M⁻¹K at the rest state (a lower bound
 // of λ_max, so dt_crit is slightly optimistic), with Gershgorin's bound
 // λ_max ≤ max_i Σ_j |K_ij| / m_i as the safe side. The linear bound does not cover large
-// nonlinear motions (on the default sheet without β, 0.98 dt_crit diverged after 0.94 s),
+// nonlinear motions (on the hanging sheet without β, 0.98 dt_crit diverged after 0.94 s),
 // so the run warns when 'Time step' exceeds 0.9 of the estimate; it re-estimates at every
-// output time (a deformed sheet can be stiffer; 0.7 % on the default sheet) and warns
+// output time (a deformed sheet can be stiffer; 0.7 % on the hanging sheet) and warns
 // when the step comes within that margin, and stops with a SimulationError when the state
 // blows up (a non-finite energy, a triangle grown a hundredfold or collapsed), keeping
 // the output so far. Steps are shortened to land on output times.
