@@ -6,9 +6,9 @@
 //               (owned entries, in the order of the owned dofs)
 //   step        the last step's size (BDF2's ratio, the error estimate), the step
 //   control     controller (nominal step, target, proposed step, halvings, rejections,
-//               carried halvings), the loop's time, step number, next output and
-//               checkpoint times, Newton's last iterations, failed attempts, the
-//               run's totals
+//               carried halvings, the step's span), the loop's time, step number, next
+//               output and checkpoint times, Newton's last iterations, failed attempts,
+//               the run's totals
 //   solver      MUMPS' choice of factorisation. The tangent kept by 'modified newton'
 //               and the AMG aggregates are not stored: the run renews them after each
 //               checkpoint (NewtonSolver::renew), as the restart starts without them
@@ -77,7 +77,8 @@ namespace clothsim
              control.next,
              double(control.halvings),
              double(control.rejected),
-             double(control.carried)});
+             double(control.carried),
+             control.span});
     run.set("loop",
             {loop.time,
              double(loop.step),
@@ -116,13 +117,14 @@ namespace clothsim
 
     previous_step                = run.get_number("step previous");
     last_load_increment          = run.get_number("step last load increment");
-    const std::vector<double> &c = run.get("control", 6);
+    const std::vector<double> &c = run.get("control", 7);
     control.nominal              = c[0];
     control.target               = c[1];
     control.next                 = c[2];
     control.halvings             = static_cast<unsigned int>(c[3]);
     control.rejected             = static_cast<unsigned int>(c[4]);
     control.carried              = static_cast<unsigned int>(c[5]);
+    control.span                 = c[6];
     const std::vector<double> &l = run.get("loop", 6);
     loop.time                    = l[0];
     loop.step                    = static_cast<unsigned int>(l[1]);
