@@ -355,6 +355,18 @@ namespace clothsim::mesh
   }
 
 
+  double
+  Discretization::largest_reference_coordinate() const
+  {
+    double largest = 0.;
+    for (const Element &element : element_table)
+      for (unsigned int v = 0; v < 3; ++v)
+        for (unsigned int d = 0; d < 3; ++d)
+          largest = std::max(largest, std::abs(element.reference[v][d]));
+    return Utilities::MPI::max(largest, communicator);
+  }
+
+
   std::vector<ProbeLocation>
   Discretization::locate_probes(
     const std::vector<std::pair<std::string, Point<3>>> &points) const

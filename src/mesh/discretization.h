@@ -220,6 +220,11 @@ namespace clothsim
       double
       longest_edge() const;
 
+      // The largest coordinate magnitude max |X_i| of the reference surface, m (over all
+      // ranks): the scale of round-off in positions.
+      double
+      largest_reference_coordinate() const;
+
       // Snaps each named point to the nearest vertex (the same on every rank), with its
       // distance from the point.
       std::vector<ProbeLocation>

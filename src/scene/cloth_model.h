@@ -49,6 +49,11 @@ namespace clothsim
     {
       return discretization;
     }
+    double
+    reference_size() const override
+    {
+      return discretization.largest_reference_coordinate();
+    }
     const BoundaryConditions &
     get_boundary_conditions() const
     {

@@ -51,6 +51,10 @@ namespace clothsim
     initialize_matrix(MatrixType &matrix) const = 0;
     virtual NearNullSpace
     near_null_space() const = 0;
+    // The largest reference coordinate magnitude, m: the scale of round-off in the
+    // positions X + u (Newton's round-off floor). Collective.
+    virtual double
+    reference_size() const = 0;
     // The lumped mass of every dof's vertex (owned, kg; zero on angle dofs).
     virtual void
     lumped_masses(VectorType &masses) const = 0;

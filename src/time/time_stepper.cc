@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 namespace clothsim
@@ -151,8 +152,16 @@ namespace clothsim
         terms.damping_weight != tangent_weights.second)
       newton.invalidate_tangent(/*rescaled=*/true);
     tangent_weights = {terms.inertia_weight, terms.damping_weight};
-    const double newton_floor =
-      dynamic && parameters.time.adaptive_time_steps ? 0.1 * step_tolerance(dt, 0.) : 0.;
+    // Round-off floor: a full Newton update below 1e3 ε times the positions' scale
+    // changes nothing the residual can resolve (its round-off, set by the largest force
+    // term, e.g. the 1/dt² inertia of a short step, may lie above 'Absolute
+    // tolerance'), so the step is converged there.
+    const double roundoff_floor =
+      1e3 * std::numeric_limits<double>::epsilon() * (reference_size + u_n.linfty_norm());
+    const double newton_floor = std::max(roundoff_floor,
+                                         dynamic && parameters.time.adaptive_time_steps
+                                           ? 0.1 * step_tolerance(dt, 0.)
+                                           : 0.);
     // 'Truncation error fraction': an update below that share of the step's own error
     // estimate at the iterate changes the answer by less than the step's discretisation
     // does (Hairer & Wanner, "Solving ODEs II", IV.8: stop Newton at a fraction of the
@@ -362,6 +371,7 @@ namespace clothsim
   {
     const double end = dynamic ? parameters.time.end_time : 1.;
     first_step = dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
+    reference_size = model.reference_size();
     if (!resumed)
       control.nominal = first_step;
     const bool adaptive_increments = !dynamic && parameters.time.adaptive_load_steps;

@@ -191,7 +191,8 @@ namespace clothsim
     NewtonSolver newton;
     bool         dynamic;
     StepControl  control;
-    double       first_step = 0.; // s: 'Time step' (static mode: 1/'Load steps')
+    double       first_step     = 0.; // s: 'Time step' (static mode: 1/'Load steps')
+    double       reference_size = 0.; // m: ModelInterface::reference_size()
 
     VectorType u_n, v_n, u_new, v_new; // owned
     VectorType centre;                 // owned: ũ, the step's damping centre
