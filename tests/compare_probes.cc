@@ -1,12 +1,16 @@
 // compare_probes A.csv B.csv RELATIVE ABSOLUTE
 // Compares two probes.csv files row by row (same steps, times and probes) and their
-// displacements: |a - b| <= max(ABSOLUTE, RELATIVE * max(|a|, |b|)). Prints the worst
+// positions and displacements, or two reactions.csv files (same steps, times and
+// groups) and their centres, forces and moments: every number after the probe or group
+// column, |a - b| <= max(ABSOLUTE, RELATIVE * max(|a|, |b|)). Prints the worst
 // deviation.
 
 #include "csv.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <string>
 
 int
 main(int argc, char **argv)
@@ -25,20 +29,26 @@ main(int argc, char **argv)
                 << b.rows.size() << ")\n";
       return 1;
     }
-  double worst = 0., worst_relative = 0.;
-  bool   passed = true;
+  // The row's name column: 'probe' (probes.csv) or 'group' (reactions.csv).
+  const bool reactions =
+    std::find(a.header.begin(), a.header.end(), "group") != a.header.end();
+  const std::string  key   = reactions ? "group" : "probe";
+  const unsigned int first = a.column(key) + 1;
+  double             worst = 0., worst_relative = 0.;
+  bool               passed = true;
   for (unsigned int r = 0; r < a.rows.size(); ++r)
     {
-      if (a.rows[r][a.column("probe")] != b.rows[r][b.column("probe")] ||
+      if (a.rows[r][a.column(key)] != b.rows[r][b.column(key)] ||
           a.rows[r][a.column("step")] != b.rows[r][b.column("step")] ||
           std::abs(a.number(r, "time") - b.number(r, "time")) > 1e-12)
         {
-          std::cout << "FAILED: row " << r + 1 << " is a different step or probe\n";
+          std::cout << "FAILED: row " << r + 1 << " is a different step or " << key
+                    << "\n";
           return 1;
         }
-      for (const char *column : {"X", "Y", "Z", "ux", "uy", "uz"})
+      for (unsigned int c = first; c < a.header.size(); ++c)
         {
-          const double x = a.number(r, column), y = b.number(r, column);
+          const double x = std::stod(a.rows[r].at(c)), y = std::stod(b.rows[r].at(c));
           const double deviation = std::abs(x - y);
           const double scale     = std::max(std::abs(x), std::abs(y));
           worst                  = std::max(worst, deviation);
@@ -49,7 +59,7 @@ main(int argc, char **argv)
         }
     }
   std::cout << a.rows.size() << " rows; largest deviation " << worst
-            << " m, largest relative deviation (values above " << absolute << ") "
+            << ", largest relative deviation (values above " << absolute << ") "
             << worst_relative << "\n"
             << (passed ? "PASSED" : "FAILED") << std::endl;
   return passed ? 0 : 1;

@@ -93,17 +93,13 @@ namespace clothsim::test
     {
       for (const ProbeLocation &probe : scene->probes)
         if (probe.name == name)
-          {
-            const std::vector<double> values =
-              gather_values(model(),
-                            displacement,
-                            {probe.dofs[0], probe.dofs[1], probe.dofs[2]});
-            return Tensor<1, 3>({values[0], values[1], values[2]});
-          }
+          return probe_displacements({probe},
+                                     displacement,
+                                     model().get_discretization().get_communicator())[0];
       throw std::runtime_error("no probe named " + name);
     }
 
-    // Reference position of the vertex the probe snapped to, m.
+    // The surface point the probe was located at, m.
     Point<3>
     probe_point(const std::string &name) const
     {

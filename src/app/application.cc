@@ -86,11 +86,16 @@ namespace clothsim
           run.model                    = models[m];
           run.integrator               = integrator_name(parameters.time.integrator);
           run.time_step                = parameters.time.time_step;
-          const ClothModel &model      = *scenes[m]->model;
-          const auto observer = [&run, &model](const double time, const VectorType &u) {
+          const ClothModel                 &model    = *scenes[m]->model;
+          const std::vector<ProbeLocation> &probes   = scenes[m]->probes;
+          const auto                        observer = [&run,
+                                 &model,
+                                 &probes,
+                                 communicator](const double time, const VectorType &u) {
             auto vertices = model.get_discretization().vertex_displacements(u);
             run.trajectory.times.push_back(time);
             run.trajectory.frames.push_back(std::move(vertices));
+            run.trajectory.probes.push_back(probe_displacements(probes, u, communicator));
           };
           pcout << "=== " << models[m] << " ===" << std::endl;
           const RunOutcome outcome = run_loaded_scene(
@@ -105,10 +110,10 @@ namespace clothsim
           {
             const ComparisonFigures figures =
               write_comparison(directory, runs[0], runs[1], [&]() {
-                std::vector<std::pair<std::string, Point<3>>> points;
+                std::vector<std::string> names;
                 for (const ProbeLocation &probe : scenes[0]->probes)
-                  points.emplace_back(probe.name, probe.reference_point);
-                return points;
+                  names.push_back(probe.name);
+                return names;
               }());
             std::cout << "comparison (" << directory << "): " << figures.frames
                       << " output times; sheet size " << figures.sheet_size

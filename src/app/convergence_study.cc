@@ -256,7 +256,7 @@ namespace clothsim
     const Parameters  &parameters = base->parameters();
     const unsigned int base_level = parameters.scene.global_refinements;
     const double       base_step  = parameters.time.time_step;
-    const bool dynamic = parameters.time.integrator != Integrator::static_load_steps;
+    const bool         dynamic    = !is_static(parameters.time.integrator);
     if (command_line.time_levels > 0 && !dynamic)
       throw InputError(file,
                        "--time",
@@ -300,21 +300,7 @@ namespace clothsim
         for (unsigned int i = 0; i <= levels; ++i)
           {
             std::vector<std::string> overrides = command_line.overrides;
-            // Refined meshes keep the coarse vertices: the probes stay at the ones the
-            // coarsest run snapped to, not at new vertices nearer their points.
-            if (name == "space" && i > 0 && !study.runs.front().probes.empty())
-              {
-                std::ostringstream probes;
-                probes << std::setprecision(17);
-                const StudyRun &coarsest = study.runs.front();
-                for (unsigned int p = 0; p < coarsest.probes.size(); ++p)
-                  probes << (p > 0 ? "; " : "") << coarsest.probes[p].name << ": "
-                         << coarsest.probe_vertices[p][0] << ", "
-                         << coarsest.probe_vertices[p][1] << ", "
-                         << coarsest.probe_vertices[p][2];
-                overrides.push_back("Output/Probes=" + probes.str());
-              }
-            const double size =
+            const double             size =
               name == "space" ? std::pow(0.5, i) : base_step * std::pow(0.5, i);
             const std::string level_setting =
               name == "space"

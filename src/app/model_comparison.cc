@@ -22,24 +22,6 @@ namespace clothsim
       return std::sqrt(sum);
     }
 
-    // Index of the vertex at reference point X in a sorted frame.
-    unsigned int
-    find_vertex(const std::vector<std::array<double, 6>> &frame, const Point<3> &X)
-    {
-      unsigned int best = 0;
-      double       gap  = std::numeric_limits<double>::max();
-      for (unsigned int i = 0; i < frame.size(); ++i)
-        {
-          const double d = Point<3>(frame[i][0], frame[i][1], frame[i][2]).distance(X);
-          if (d < gap)
-            {
-              gap  = d;
-              best = i;
-            }
-        }
-      return best;
-    }
-
     // The index of the frame of `trajectory` at `time`, or -1.
     int
     matching_frame(const Trajectory &trajectory, const double time)
@@ -53,10 +35,10 @@ namespace clothsim
 
 
   ComparisonFigures
-  write_comparison(const std::string                                   &directory,
-                   const ComparedRun                                   &fem,
-                   const ComparedRun                                   &mass_spring,
-                   const std::vector<std::pair<std::string, Point<3>>> &probe_points)
+  write_comparison(const std::string              &directory,
+                   const ComparedRun              &fem,
+                   const ComparedRun              &mass_spring,
+                   const std::vector<std::string> &probe_names)
   {
     ComparisonFigures figures{};
     if (fem.trajectory.frames.empty() || mass_spring.trajectory.frames.empty())
@@ -75,15 +57,11 @@ namespace clothsim
         figures.sheet_size = std::max(figures.sheet_size, (*high)[d] - (*low)[d]);
       }
 
-    std::vector<unsigned int> probe_vertices;
-    for (const auto &[name, point] : probe_points)
-      probe_vertices.push_back(find_vertex(first, point));
-
     std::ostringstream csv;
     csv << "time,quantity,difference,relative_difference\n" << std::setprecision(10);
     // Probe histories for the plot: [probe][model] -> (times, displacement components).
     std::vector<std::array<std::vector<std::array<double, 4>>, 2>> histories(
-      probe_points.size());
+      probe_names.size());
     for (unsigned int k = 0; k < fem.trajectory.times.size(); ++k)
       {
         const double time  = fem.trajectory.times[k];
@@ -100,16 +78,15 @@ namespace clothsim
             largest = std::max(largest, gap);
           }
         const double rms = std::sqrt(sum_squares / a.size());
-        for (unsigned int p = 0; p < probe_points.size(); ++p)
+        for (unsigned int p = 0; p < probe_names.size(); ++p)
           {
-            const double gap = distance(a[probe_vertices[p]], b[probe_vertices[p]]);
-            csv << time << ',' << probe_points[p].first << ',' << gap << ','
+            const Tensor<1, 3> &u_fem = fem.trajectory.probes[k][p];
+            const Tensor<1, 3> &u_ms  = mass_spring.trajectory.probes[other][p];
+            const double        gap   = (u_fem - u_ms).norm();
+            csv << time << ',' << probe_names[p] << ',' << gap << ','
                 << gap / figures.sheet_size << '\n';
-            for (unsigned int m = 0; m < 2; ++m)
-              {
-                const auto &row = (m == 0 ? a : b)[probe_vertices[p]];
-                histories[p][m].push_back({{time, row[3], row[4], row[5]}});
-              }
+            histories[p][0].push_back({{time, u_fem[0], u_fem[1], u_fem[2]}});
+            histories[p][1].push_back({{time, u_ms[0], u_ms[1], u_ms[2]}});
           }
         csv << time << ",mesh_rms," << rms << ',' << rms / figures.sheet_size << '\n'
             << time << ",mesh_max," << largest << ',' << largest / figures.sheet_size
@@ -135,7 +112,7 @@ namespace clothsim
 
     // One panel per probe: the displacement component that moves most, both models.
     std::vector<io::PlotPanel> panels;
-    for (unsigned int p = 0; p < probe_points.size(); ++p)
+    for (unsigned int p = 0; p < probe_names.size(); ++p)
       {
         unsigned int component = 1;
         double       range     = -1.;
@@ -155,7 +132,7 @@ namespace clothsim
               }
           }
         io::PlotPanel panel;
-        panel.title   = "probe " + probe_points[p].first;
+        panel.title   = "probe " + probe_names[p];
         panel.x_label = "time (s)";
         panel.y_label = std::string("u") + "xyz"[component - 1] + " (m)";
         for (unsigned int m = 0; m < 2; ++m)

@@ -21,12 +21,13 @@
 
 namespace clothsim
 {
-  // Every vertex (X, Y, Z, ux, uy, uz), sorted by reference position, at each output
-  // time.
+  // Every vertex (X, Y, Z, ux, uy, uz), sorted by reference position, and each probe's
+  // displacement (interpolated, io/probe_location.h), at each output time.
   struct Trajectory
   {
     std::vector<double>                             times;
     std::vector<std::vector<std::array<double, 6>>> frames;
+    std::vector<std::vector<Tensor<1, 3>>>          probes; // [frame][probe], m
   };
 
   struct ComparedRun
@@ -51,10 +52,10 @@ namespace clothsim
   };
 
   // Writes the three files (on the calling rank: call on rank 0 only) and returns the
-  // figures. `probe_points`: name and reference vertex of each probe.
+  // figures. `probe_names`: the probes of both trajectories, in their order.
   ComparisonFigures
-  write_comparison(const std::string                                   &directory,
-                   const ComparedRun                                   &fem,
-                   const ComparedRun                                   &mass_spring,
-                   const std::vector<std::pair<std::string, Point<3>>> &probe_points);
+  write_comparison(const std::string              &directory,
+                   const ComparedRun              &fem,
+                   const ComparedRun              &mass_spring,
+                   const std::vector<std::string> &probe_names);
 } // namespace clothsim

@@ -187,9 +187,9 @@ namespace clothsim
 
     const Parameters          &parameters = scene->parameters();
     const std::vector<double> &loop       = run.get("loop", 6);
-    const bool   dynamic = parameters.time.integrator != Integrator::static_load_steps;
-    const double end     = dynamic ? parameters.time.end_time : 1.;
-    const double step =
+    const bool                 dynamic    = !is_static(parameters.time.integrator);
+    const double               end        = dynamic ? parameters.time.end_time : 1.;
+    const double               step =
       dynamic ? parameters.time.time_step : 1. / parameters.time.load_steps;
     if (loop[0] >= end - 1e-9 * step)
       {

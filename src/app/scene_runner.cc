@@ -318,7 +318,7 @@ namespace clothsim
               << range[0].first << " to " << range[0].second << " N/m), " << counts[1]
               << " cross springs (k " << range[1].first << " to " << range[1].second
               << " N/m)\n";
-        if (parameters.time.integrator == Integrator::static_load_steps)
+        if (is_static(parameters.time.integrator))
           pcout
             << "  note: springs have no linear bending stiffness at a flat state (a "
                "bend spring's energy grows like the fold angle^4): a static solve of a "
@@ -333,7 +333,8 @@ namespace clothsim
             << " m: adaptive steps, each step's local error at most the target x dt / "
             << parameters.time.end_time << " s, Newton to a tenth of that\n";
     for (const ProbeLocation &probe : scene.probes)
-      pcout << "  probe " << probe.name << " at vertex " << probe.reference_point << "\n";
+      pcout << "  probe " << probe.name << " at " << probe.reference_point << " ("
+            << probe.distance << " m from the point given)\n";
     pcout << "  output: " << directory << std::endl;
     if (options.resume_run != nullptr)
       {
@@ -360,6 +361,8 @@ namespace clothsim
           return "backward euler";
         case Integrator::static_load_steps:
           return "static";
+        case Integrator::linear_static:
+          return "linear static";
         case Integrator::symplectic_euler:
           return "symplectic euler";
         case Integrator::velocity_verlet:

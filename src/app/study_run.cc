@@ -8,7 +8,6 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -71,14 +70,14 @@ namespace clothsim
     run.overrides = overrides;
     run.unknowns  = model.n_dofs();
     run.time_step = parameters.time.time_step;
-    run.end_time  = parameters.time.integrator == Integrator::static_load_steps
-                      ? 1.
-                      : parameters.time.end_time;
+    run.end_time  = is_static(parameters.time.integrator) ? 1. : parameters.time.end_time;
     run.probes    = parameters.output.probes;
 
     ConditionalOStream quiet(std::cout, false);
-    const auto         keep_last = [&run, &model](const double, const VectorType &u) {
+    const auto         keep_last = [&run, &model, &scene, communicator](const double,
+                                                                const VectorType &u) {
       run.vertices = model.get_discretization().vertex_displacements(u);
+      run.probe_displacements = probe_displacements(scene->probes, u, communicator);
     };
     const RunOutcome outcome =
       run_loaded_scene(*scene, file, directory, quiet, keep_last);
@@ -86,25 +85,6 @@ namespace clothsim
     run.failure      = outcome.failure;
     run.wall_seconds = outcome.wall_seconds;
     run.summary      = outcome.summary;
-
-    // Each probe's displacement from its vertex in the final state.
-    for (const ProbeLocation &probe : scene->probes)
-      {
-        Tensor<1, 3> displacement;
-        double       gap = std::numeric_limits<double>::max();
-        for (const auto &vertex : run.vertices)
-          {
-            const double d =
-              Point<3>(vertex[0], vertex[1], vertex[2]).distance(probe.reference_point);
-            if (d < gap)
-              {
-                gap          = d;
-                displacement = Tensor<1, 3>({vertex[3], vertex[4], vertex[5]});
-              }
-          }
-        run.probe_displacements.push_back(displacement);
-        run.probe_vertices.push_back(probe.reference_point);
-      }
     return run;
   }
 

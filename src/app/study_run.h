@@ -36,7 +36,6 @@ namespace clothsim
     std::vector<std::array<double, 6>> vertices;
     std::vector<Probe>        probes; // the scene's probes (and their closed-form values)
     std::vector<Tensor<1, 3>> probe_displacements; // at the last output state, m
-    std::vector<Point<3>>     probe_vertices;      // where the probes snapped
   };
 
   // Loads `file` with `overrides` and runs it into `directory`. Input errors throw

@@ -65,6 +65,8 @@ namespace clothsim
     run.set_text("output frame files", names);
     run.set("output probes.csv bytes", static_cast<double>(probes_csv.size()));
     run.set("output statistics.csv bytes", static_cast<double>(statistics_csv.size()));
+    run.set("output reactions.csv bytes",
+            reactions_open ? static_cast<double>(reactions_csv.size()) : 0.);
   }
 
 
@@ -82,11 +84,15 @@ namespace clothsim
       }
     const long long probe_bytes      = resume.get_number("output probes.csv bytes");
     const long long statistics_bytes = resume.get_number("output statistics.csv bytes");
+    const long long reactions_bytes  = resume.get_number("output reactions.csv bytes");
+    reactions_open                   = reactions_bytes > 0;
     io::run_collectively(communicator, [&]() {
       if (!is_root)
         return;
       probes_csv.reopen_at(directory + "/probes.csv", probe_bytes);
       statistics_csv.reopen_at(directory + "/statistics.csv", statistics_bytes);
+      if (reactions_open)
+        reactions_csv.reopen_at(directory + "/reactions.csv", reactions_bytes);
       // Frames written after the checkpoint (their pieces and records) go; the new ones
       // take their numbers.
       namespace fs = std::filesystem;
@@ -130,14 +136,10 @@ namespace clothsim
     if (frame_observer)
       frame_observer(time, u);
 
-    // Probe values: each from the rank that owns it.
-    std::vector<double> values(3 * probes.size(), 0.);
-    for (unsigned int p = 0; p < probes.size(); ++p)
-      for (unsigned int d = 0; d < 3; ++d)
-        if (u.locally_owned_elements().is_element(probes[p].dofs[d]))
-          values[3 * p + d] = u(probes[p].dofs[d]);
-    MPI_Allreduce(
-      MPI_IN_PLACE, values.data(), values.size(), MPI_DOUBLE, MPI_SUM, communicator);
+    // Probe values, interpolated in their triangles.
+    std::vector<double> values;
+    for (const Tensor<1, 3> &displacement : probe_displacements(probes, u, communicator))
+      values.insert(values.end(), displacement.begin_raw(), displacement.end_raw());
     last_state_time   = time;
     last_probe_values = values;
     // solution.pvd lists complete frames only; then the probes' rows.
@@ -186,6 +188,42 @@ namespace clothsim
         line << ',' << energy;
       line << '\n';
       statistics_csv.append(line.str());
+    });
+  }
+
+
+  void
+  OutputWriter::write_reactions(const unsigned int                  step,
+                                const double                        time,
+                                const std::vector<SupportReaction> &reactions)
+  {
+    io::run_collectively(communicator, [&]() {
+      if (!is_root)
+        return;
+      if (!reactions_open)
+        {
+          reactions_csv.open(directory + "/reactions.csv");
+          reactions_csv.append("step,time,group,X,Y,Z,Fx,Fy,Fz,Mx,My,Mz\n");
+          reactions_open = true;
+        }
+      std::ostringstream rows;
+      rows << std::setprecision(12);
+      for (const SupportReaction &reaction : reactions)
+        {
+          rows << step << ',' << time << ',' << reaction.group;
+          for (const double value : {reaction.centre[0],
+                                     reaction.centre[1],
+                                     reaction.centre[2],
+                                     reaction.force[0],
+                                     reaction.force[1],
+                                     reaction.force[2],
+                                     reaction.moment[0],
+                                     reaction.moment[1],
+                                     reaction.moment[2]})
+            rows << ',' << value;
+          rows << '\n';
+        }
+      reactions_csv.append(rows.str());
     });
   }
 

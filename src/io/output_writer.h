@@ -46,6 +46,17 @@ namespace clothsim
     double linear_solve_seconds  = 0.;    // ... in linear solves and preconditioners
   };
 
+  // A support's reaction (reactions.csv): the force the group's pins exert on the cloth
+  // and their moment about `centre`, the current centroid of the group's vertices,
+  // including the moments the held rotations carry.
+  struct SupportReaction
+  {
+    std::string  group;
+    Point<3>     centre; // m
+    Tensor<1, 3> force;  // N
+    Tensor<1, 3> moment; // N·m
+  };
+
   class OutputWriter
   {
   public:
@@ -78,6 +89,14 @@ namespace clothsim
 
     void
     write_statistics(const StepStatistics &row);
+
+    // Rows of reactions.csv (step,time,group,X,Y,Z,Fx,Fy,Fz,Mx,My,Mz) for the state
+    // just written (the same on every rank; rank 0 writes). The file is made with the
+    // first call: a run without pinned or clamped groups has none.
+    void
+    write_reactions(const unsigned int                  step,
+                    const double                        time,
+                    const std::vector<SupportReaction> &reactions);
 
     const std::string &
     get_directory() const
@@ -115,6 +134,8 @@ namespace clothsim
     const bool                                  is_root;
     io::RowFile                                 probes_csv;
     io::RowFile                                 statistics_csv;
+    io::RowFile                                 reactions_csv; // opened on first use
+    bool                                        reactions_open = false;
     std::vector<std::pair<double, std::string>> frames;
     FrameObserver                               frame_observer;
     // For print_summary(): the last state's time and probe values (3 per probe), the

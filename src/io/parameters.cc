@@ -110,6 +110,21 @@ namespace clothsim
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
     contact.parse_parameters(prm);
+    if (time.integrator == Integrator::linear_static)
+      {
+        // One linearised step from the reference state with the exact tangent, taken
+        // whatever the residual (no tolerance could stop it before it moved).
+        time.load_steps                            = 1;
+        time.adaptive_load_steps                   = false;
+        time.max_step_halvings                     = 0; // half the load is no answer
+        nonlinear_solver.method                    = NewtonMethod::single_step;
+        nonlinear_solver.tangent                   = "exact";
+        nonlinear_solver.mixed_stress_tangent      = false;
+        nonlinear_solver.absolute_tolerance        = 0.;
+        nonlinear_solver.relative_tolerance        = 0.;
+        nonlinear_solver.displacement_tolerance    = 0.;
+        nonlinear_solver.truncation_error_fraction = 0.;
+      }
   }
 
 
@@ -216,14 +231,14 @@ namespace clothsim
     if ((!parameters.contact.obstacles.empty() || parameters.contact.self_contact) &&
         integrator != Integrator::backward_euler && integrator != Integrator::bdf2 &&
         integrator != Integrator::static_load_steps)
-      throw InputError(file,
-                       "Time/Integrator",
-                       std::string(parameters.contact.obstacles.empty()
-                                     ? "self-contact"
-                                     : "contact with obstacles") +
-                         " needs 'backward euler', 'bdf2' or 'static "
-                         "load steps' (the barrier holds the state solved for, which the "
-                         "midpoint rules and the explicit integrators do not end on)");
+      throw InputError(
+        file,
+        "Time/Integrator",
+        std::string(parameters.contact.obstacles.empty() ? "self-contact"
+                                                         : "contact with obstacles") +
+          " needs 'backward euler', 'bdf2' or 'static' (the barrier holds "
+          "the state solved for, which the midpoint rules and the explicit "
+          "integrators do not end on, and a linear solve does not keep)");
     if (mass_spring && parameters.material.orthotropic &&
         parameters.mass_spring.derived_constants)
       throw InputError(file,
@@ -235,9 +250,8 @@ namespace clothsim
       throw InputError(file,
                        "Material/Mass",
                        "the mass-spring model has lumped masses only; set 'lumped'");
-    if (parameters.time.accuracy_target > 0. &&
-        (parameters.time.integrator == Integrator::static_load_steps ||
-         is_explicit(parameters.time.integrator)))
+    if (parameters.time.accuracy_target > 0. && (is_static(parameters.time.integrator) ||
+                                                 is_explicit(parameters.time.integrator)))
       throw InputError(file,
                        "Time/Accuracy target",
                        "an accuracy target needs an implicit dynamic integrator "
@@ -248,9 +262,8 @@ namespace clothsim
                        "Time/Accuracy target",
                        "an accuracy target needs a Newton method that solves each step "
                        "('single step' leaves it unsolved)");
-    if (parameters.time.adaptive_time_steps &&
-        (parameters.time.integrator == Integrator::static_load_steps ||
-         is_explicit(parameters.time.integrator)))
+    if (parameters.time.adaptive_time_steps && (is_static(parameters.time.integrator) ||
+                                                is_explicit(parameters.time.integrator)))
       throw InputError(file,
                        "Time/Adaptive time steps",
                        "adaptive time steps are for the implicit dynamic integrators "
@@ -282,13 +295,13 @@ namespace clothsim
                        "is below 'Linear solver/Relative tolerance', the tightest "
                        "forcing term");
     if (parameters.mass_spring.strain_limit > 0. &&
-        (!mass_spring || parameters.time.integrator == Integrator::static_load_steps))
+        (!mass_spring || is_static(parameters.time.integrator)))
       throw InputError(file,
                        "Mass spring/Strain limit",
                        "the strain limit corrects dynamic steps of the mass-spring "
                        "model only; set it to 0");
     if (parameters.air.density > 0. &&
-        (integrator == Integrator::static_load_steps || is_explicit(integrator) ||
+        (is_static(integrator) || is_explicit(integrator) ||
          integrator == Integrator::average_vector_field))
       throw InputError(
         file,

@@ -134,6 +134,7 @@ namespace clothsim
   {
     std::string         name;
     std::array<bool, 3> components; // x, y, z
+    bool rotation = false; // 'r': the shell's rotation about the group's edges held
   };
 
   struct ConstraintParameters
@@ -152,12 +153,21 @@ namespace clothsim
   {
     backward_euler,
     static_load_steps,
+    linear_static,       // one linear solve about the reference state
     symplectic_euler,    // explicit
     velocity_verlet,     // explicit
     bdf2,                // implicit, second order, variable step
     implicit_midpoint,   // implicit, second order, symplectic
     average_vector_field // implicit, second order, the midpoint rule conserving energy
   };
+
+  // Static analyses: time is the load factor 0..1, no inertia.
+  inline bool
+  is_static(const Integrator integrator)
+  {
+    return integrator == Integrator::static_load_steps ||
+           integrator == Integrator::linear_static;
+  }
 
   // The implicit midpoint rule and its energy-conserving variant solve for the step's
   // midpoint.
@@ -267,6 +277,7 @@ namespace clothsim
     double             interval; // s; 0: every step
     bool               write_vtk;
     std::vector<Probe> probes;
+    double             probe_tolerance;             // fraction of the longest edge
     std::string        progress;                    // "auto", "on", "off"
     double             drape_disc_radius;           // m; 0: no drape coefficient
     bool               check_intersections = false; // count intersecting triangle pairs

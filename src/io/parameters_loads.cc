@@ -93,9 +93,13 @@ namespace clothsim
       "",
       Patterns::List(Patterns::Anything(), 0, 100, ";"),
       "gmsh physical groups (points, boundary lines or surfaces) whose vertices "
-      "follow 'Pinned displacement', separated by ';'. Each is 'name' (all "
-      "components) or 'name: components' with components from x, y, z, e.g. "
-      "'pinned' or 'left: x; corner: xy; cloth: z'.");
+      "follow 'Pinned displacement', separated by ';'. Each is 'name' (x, y and z) "
+      "or 'name: components' with components from x, y, z and r, e.g. 'pinned' or "
+      "'left: x; corner: xy; cloth: z'. 'r' (boundary line groups, with "
+      "'Material/Bending') holds the shell's rotation about the group's edges: the "
+      "director along them turns only with the edge. A symmetry plane x = c is "
+      "'name: xr' (no displacement across it, no rotation about it; the other "
+      "components free); 'name: xyzr' is a clamped edge.");
     prm.declare_entry(
       "Pinned displacement",
       "0; 0; 0",
@@ -126,16 +130,19 @@ namespace clothsim
         PinnedGroup group{parts[0], {{true, true, true}}};
         if (parts.size() > 2 || parts[0].empty() ||
             (parts.size() == 2 &&
-             parts[1].find_first_not_of("xyz") != std::string::npos) ||
+             parts[1].find_first_not_of("xyzr") != std::string::npos) ||
             (parts.size() == 2 && parts[1].empty()))
           throw InputError("",
                            "Constraints/Pinned groups",
                            "'" + item +
                              "' is not 'name' or 'name: components' (components "
-                             "from x, y, z)");
+                             "from x, y, z, r)");
         if (parts.size() == 2)
-          for (unsigned int d = 0; d < 3; ++d)
-            group.components[d] = parts[1].find("xyz"[d]) != std::string::npos;
+          {
+            for (unsigned int d = 0; d < 3; ++d)
+              group.components[d] = parts[1].find("xyz"[d]) != std::string::npos;
+            group.rotation = parts[1].find('r') != std::string::npos;
+          }
         pinned_groups.push_back(group);
       }
     pinned_displacement = prm.get("Pinned displacement");

@@ -78,10 +78,19 @@ namespace clothsim
       "Probes",
       "",
       named_triples_pattern(),
-      "Named reference points 'name: X, Y, Z; name2: X, Y, Z' (m). Each snaps to "
-      "the nearest mesh vertex; probes.csv records its reference position and "
-      "displacement. A point must lie on the surface: one farther from the "
-      "nearest vertex than the (refined) mesh's longest edge is an error.");
+      "Named reference points 'name: X, Y, Z; name2: X, Y, Z' (m). Each is located "
+      "in the triangle of the (refined) reference surface closest to it; probes.csv "
+      "records that triangle's closest point (X, Y, Z) and the displacement "
+      "interpolated linearly there, and the log its distance from the point given. "
+      "A point farther from the surface than 'Probe tolerance' allows is an error.");
+    prm.declare_entry(
+      "Probe tolerance",
+      "0.01",
+      Patterns::Double(0.),
+      "How far a probe's point may lie from the (refined) reference surface, as a "
+      "fraction of the mesh's longest edge (dimensionless). A point taken on a "
+      "curved surface lies off its flat triangles by up to h²/(8R) for an edge h "
+      "and a radius of curvature R: raise it for coarse meshes of curved surfaces.");
     prm.declare_entry(
       "Probe references",
       "",
@@ -119,6 +128,7 @@ namespace clothsim
     write_vtk           = prm.get_bool("Write VTK");
     drape_disc_radius   = prm.get_double("Drape disc radius");
     check_intersections = prm.get_bool("Check intersections");
+    probe_tolerance     = prm.get_double("Probe tolerance");
     probes.clear();
     for (const auto &[name, X] : parse_named_triples(prm.get("Probes")))
       probes.push_back({name, Point<3>(X), false, {}});

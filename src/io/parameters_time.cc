@@ -12,7 +12,7 @@ namespace clothsim
       "Integrator",
       "backward euler",
       Patterns::Selection(
-        "backward euler|bdf2|implicit midpoint|average vector field|static|"
+        "backward euler|bdf2|implicit midpoint|average vector field|static|linear static|"
         "symplectic euler|velocity verlet"),
       "'backward euler': implicit dynamics, each step the minimiser of the "
       "incremental potential (first order, damps high frequencies). 'bdf2': "
@@ -27,7 +27,11 @@ namespace clothsim
       "and the loads, to fourth order in the step for bending and springs); "
       "two force and tangent evaluations per Newton iteration. 'static': "
       "equilibrium under loads ramped in 'Load steps' equal increments (time = load "
-      "factor 0..1). 'symplectic "
+      "factor 0..1). 'linear static': small-displacement analysis, one linear solve "
+      "K0 u = f about the reference state (K0 the tangent there, f the loads at full "
+      "value): the answer scales with the loads. It takes one load step of size 1 ('Load "
+      "steps' and the 'Nonlinear solver' section are not used) and needs the pinned "
+      "displacements to be zero. 'symplectic "
       "euler' (v first, then x; first order) and 'velocity verlet' (second "
       "order): explicit, one force evaluation per step, stable only below the "
       "critical step 2/omega_max, which the run estimates and prints (a warning "
@@ -121,8 +125,9 @@ namespace clothsim
   {
     prm.enter_subsection("Time");
     const std::string name   = prm.get("Integrator");
-    integrator               = name == "static" ? Integrator::static_load_steps
-                               : name == "bdf2" ? Integrator::bdf2
+    integrator               = name == "static"          ? Integrator::static_load_steps
+                               : name == "linear static" ? Integrator::linear_static
+                               : name == "bdf2"          ? Integrator::bdf2
                                : name == "implicit midpoint" ? Integrator::implicit_midpoint
                                : name == "average vector field" ? Integrator::average_vector_field
                                : name == "symplectic euler" ? Integrator::symplectic_euler

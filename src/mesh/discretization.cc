@@ -11,7 +11,6 @@
 #include "mesh/ghosted_values.h"
 
 #include <algorithm>
-#include <limits>
 #include <map>
 #include <set>
 
@@ -364,41 +363,6 @@ namespace clothsim::mesh
         for (unsigned int d = 0; d < 3; ++d)
           largest = std::max(largest, std::abs(element.reference[v][d]));
     return Utilities::MPI::max(largest, communicator);
-  }
-
-
-  std::vector<ProbeLocation>
-  Discretization::locate_probes(
-    const std::vector<std::pair<std::string, Point<3>>> &points) const
-  {
-    std::vector<ProbeLocation> located;
-    const unsigned int         rank = Utilities::MPI::this_mpi_process(communicator);
-    for (const auto &[name, point] : points)
-      {
-        // Nearest locally owned vertex (its x dof owned here), then the global minimum.
-        double        best = std::numeric_limits<double>::max();
-        ProbeLocation candidate{name, Point<3>(), {{0, 0, 0}}, 0.};
-        for (const Element &element : element_table)
-          for (unsigned int v = 0; v < 3; ++v)
-            if (locally_owned_dofs.is_element(element.dofs[3 * v]))
-              {
-                const double distance = element.reference[v].distance(point);
-                if (distance < best)
-                  {
-                    best                      = distance;
-                    candidate.distance        = distance;
-                    candidate.reference_point = element.reference[v];
-                    for (unsigned int d = 0; d < 3; ++d)
-                      candidate.dofs[d] = element.dofs[3 * v + d];
-                  }
-              }
-        // Ties between ranks go to the lowest rank.
-        const auto all =
-          Utilities::MPI::all_gather(communicator, std::make_pair(best, rank));
-        const auto winner = std::min_element(all.begin(), all.end())->second;
-        located.push_back(Utilities::MPI::broadcast(communicator, candidate, winner));
-      }
-    return located;
   }
 
 

@@ -23,7 +23,6 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include "io/probe_location.h"
 
 #include <array>
 #include <functional>
@@ -224,11 +223,6 @@ namespace clothsim
       // ranks): the scale of round-off in positions.
       double
       largest_reference_coordinate() const;
-
-      // Snaps each named point to the nearest vertex (the same on every rank), with its
-      // distance from the point.
-      std::vector<ProbeLocation>
-      locate_probes(const std::vector<std::pair<std::string, Point<3>>> &points) const;
 
       // Every vertex's reference position and displacement (X, Y, Z, ux, uy, uz) from `u`
       // (ghosted), sorted by reference position, on rank 0 (empty elsewhere).

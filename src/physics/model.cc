@@ -354,8 +354,32 @@ namespace clothsim::physics
   void
   Model::elastic_forces(const VectorType &u, VectorType &forces) const
   {
+    add_forces(u, StepTerms(), {TermKind::elastic}, forces);
+  }
+
+
+  void
+  Model::static_forces(const VectorType &u,
+                       const StepTerms  &step,
+                       VectorType       &forces) const
+  {
+    add_forces(u,
+               step,
+               {TermKind::elastic, TermKind::potential, TermKind::constraint},
+               forces);
+  }
+
+
+  void
+  Model::add_forces(const VectorType            &u,
+                    const StepTerms             &step,
+                    const std::vector<TermKind> &kinds,
+                    VectorType                  &forces) const
+  {
+    const auto wanted = [&kinds](const TermKind kind) {
+      return std::find(kinds.begin(), kinds.end(), kind) != kinds.end();
+    };
     forces = 0.;
-    const StepTerms                      step;
     LocalVector                          g;
     std::vector<types::global_dof_index> dofs;
     std::vector<double>                  values;
@@ -363,7 +387,7 @@ namespace clothsim::physics
     for_each_element(u, nullptr, nullptr, [&](const ElementState &state) {
       g.fill(0.);
       for (const auto &term : element_terms)
-        if (term->kind() == TermKind::elastic)
+        if (wanted(term->kind()))
           {
             double value = 0.;
             term->add_to_step(state, step, value, &g, nullptr);
@@ -381,7 +405,7 @@ namespace clothsim::physics
     });
     const AffineConstraints<double> none;
     for (const auto &term : global_terms)
-      if (term->kind() == TermKind::elastic)
+      if (wanted(term->kind()))
         term->add_to_step(u, step, none, &forces, nullptr, nullptr);
     forces.compress(VectorOperation::add);
   }

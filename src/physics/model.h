@@ -102,6 +102,12 @@ namespace clothsim::physics
     void
     elastic_forces(const VectorType &u, VectorType &forces) const;
 
+    // The same for the static terms: elastic, loads (at `step`'s load factor and time)
+    // and constraints (contact barriers), i.e. the force the supports must supply at
+    // rest; no inertia, damping or friction.
+    void
+    static_forces(const VectorType &u, const StepTerms &step, VectorType &forces) const;
+
     // Energies at displacement u and velocity v (ghosted). If non-null,
     // `damping_force` gets the state's damping force D(u) v from the same loops (the
     // dissipative terms' gradient with w_d = 1 and u_n = u - v, K_n as last prepared;
@@ -149,6 +155,14 @@ namespace clothsim::physics
     cell_fields(const VectorType &u) const;
 
   private:
+    // Sets `forces` (owned) to the gradient of the terms of `kinds` at u (ghosted), no
+    // constraints applied.
+    void
+    add_forces(const VectorType            &u,
+               const StepTerms             &step,
+               const std::vector<TermKind> &kinds,
+               VectorType                  &forces) const;
+
     // Calls function(element state) for every locally owned triangle, with û and u_n
     // gathered only if given (else equal to u), the angles only with directors and the
     // positions at `linearised_from` only if given.

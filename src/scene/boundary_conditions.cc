@@ -20,9 +20,10 @@ namespace clothsim
     struct GroupPin
     {
       std::array<bool, 3>   components;
-      int                   boundary_id = -1; // line group
-      int                   material_id = -1; // surface group
-      std::vector<Point<3>> points;           // point group
+      bool                  rotation    = false; // the rotation about its edges held
+      int                   boundary_id = -1;    // line group
+      int                   material_id = -1;    // surface group
+      std::vector<Point<3>> points;              // point group
     };
 
     std::string
@@ -87,14 +88,20 @@ namespace clothsim
     , initial_displacement(3)
     , initial_velocity(3)
   {
-    std::vector<GroupPin> group_pins;
+    std::vector<GroupPin>        group_pins;
+    std::set<types::boundary_id> held_rotation_ids; // clamped, or pinned with 'r'
     for (const PinnedGroup &group : parameters.constraints.pinned_groups)
       {
         GroupPin pin;
         pin.components = group.components;
+        pin.rotation   = group.rotation;
         if (const auto line = groups.line_groups.find(group.name);
             line != groups.line_groups.end())
-          pin.boundary_id = line->second;
+          {
+            pin.boundary_id = line->second;
+            if (group.rotation)
+              held_rotation_ids.insert(line->second);
+          }
         else if (const auto surface = groups.surface_groups.find(group.name);
                  surface != groups.surface_groups.end())
           pin.material_id = surface->second;
@@ -106,10 +113,17 @@ namespace clothsim
                            "Constraints/Pinned groups",
                            "the mesh has no group named '" + group.name +
                              "' (its groups: " + list_names(groups.all_names()) + ")");
+        if (group.rotation && pin.boundary_id < 0)
+          throw InputError(parameter_file,
+                           "Constraints/Pinned groups",
+                           "'" + group.name +
+                             ": ...r' holds the rotation about a group's edges; '" +
+                             group.name + "' is not a boundary line group");
         group_pins.push_back(pin);
+        support_list.push_back({group.name, {}, {}, {}});
       }
-    // Clamped groups: boundary lines whose vertices are fixed in every component.
-    std::set<types::boundary_id> clamped_ids;
+    // Clamped groups: boundary lines whose vertices are fixed in every component and
+    // whose rotation is held.
     for (const std::string &name : parameters.constraints.clamped_groups)
       {
         const auto line = groups.line_groups.find(name);
@@ -125,9 +139,11 @@ namespace clothsim
           }
         GroupPin pin;
         pin.components  = {{true, true, true}};
+        pin.rotation    = true;
         pin.boundary_id = line->second;
         group_pins.push_back(pin);
-        clamped_ids.insert(line->second);
+        support_list.push_back({name, {}, {}, {}});
+        held_rotation_ids.insert(line->second);
       }
 
     // Matching tolerance for point groups: far below any edge length.
@@ -143,10 +159,16 @@ namespace clothsim
       if (!cell->is_artificial())
         {
           cell->get_dof_indices(dof_indices);
+          std::array<std::array<types::global_dof_index, 3>, 3> vertex_dofs;
+          for (unsigned int i = 0; i < dofs_per_cell; ++i)
+            if (vertex_component[i].second < 3)
+              vertex_dofs[vertex_component[i].first][vertex_component[i].second] =
+                dof_indices[i];
           // pinned[vertex][component]
           std::array<std::array<bool, 3>, 3> pinned_here{};
-          for (const GroupPin &pin : group_pins)
+          for (unsigned int g = 0; g < group_pins.size(); ++g)
             {
+              const GroupPin     &pin             = group_pins[g];
               std::array<bool, 3> vertex_in_group = {{false, false, false}};
               if (pin.material_id >= 0 &&
                   cell->material_id() == types::material_id(pin.material_id))
@@ -163,6 +185,25 @@ namespace clothsim
                       for (unsigned int v = 0; v < 3; ++v)
                         if (cell->vertex_index(v) == cell->face(f)->vertex_index(fv))
                           vertex_in_group[v] = true;
+              Support &support = support_list[g];
+              for (unsigned int v = 0; v < 3; ++v)
+                if (vertex_in_group[v])
+                  {
+                    support.vertices[vertex_dofs[v][0]] = {vertex_dofs[v],
+                                                           cell->vertex(v)};
+                    for (unsigned int c = 0; c < 3; ++c)
+                      if (pin.components[c])
+                        support.pinned.insert(vertex_dofs[v][c]);
+                  }
+              for (unsigned int i = 0; i < dofs_per_cell; ++i)
+                {
+                  const auto [vertex, component] = vertex_component[i];
+                  if (pin.rotation && pin.boundary_id >= 0 && component == 3 &&
+                      vertex >= 3 && cell->line(vertex - 3)->at_boundary() &&
+                      cell->line(vertex - 3)->boundary_id() ==
+                        types::boundary_id(pin.boundary_id))
+                    support.held_angles.insert(dof_indices[i]);
+                }
               for (unsigned int v = 0; v < 3; ++v)
                 for (unsigned int c = 0; c < 3; ++c)
                   pinned_here[v][c] =
@@ -173,10 +214,11 @@ namespace clothsim
               const auto [vertex, component] = vertex_component[i];
               if (component < 3 && pinned_here[vertex][component])
                 found[dof_indices[i]] = {dof_indices[i], component, cell->vertex(vertex)};
-              // The angle of a clamped boundary line (P2 line dof vertex - 3).
+              // The angle of a boundary line whose rotation is held (P2 line dof
+              // vertex - 3).
               if (component == 3 && vertex >= 3 &&
                   cell->line(vertex - 3)->at_boundary() &&
-                  clamped_ids.count(cell->line(vertex - 3)->boundary_id()) > 0)
+                  held_rotation_ids.count(cell->line(vertex - 3)->boundary_id()) > 0)
                 clamped_angle_dofs.insert(dof_indices[i]);
             }
         }

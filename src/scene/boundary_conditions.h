@@ -15,6 +15,8 @@
 #include "mesh/discretization.h"
 #include "mesh/gmsh_reader.h"
 
+#include <array>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -62,6 +64,26 @@ namespace clothsim
     void
     apply_pinned_displacement(const double time, VectorType &u) const;
 
+    // A pinned or clamped group as a support, for its reaction (locally relevant dofs):
+    // the displacement dofs it pins, its vertices, and the angle dofs of
+    // the edges whose rotation it holds. In the order of 'Pinned groups', then 'Clamped
+    // groups'; a vertex in two groups belongs to both.
+    struct Support
+    {
+      std::string                       name;
+      std::set<types::global_dof_index> pinned;
+      // Its vertices by x dof: their (x, y, z) dofs and reference positions.
+      std::map<types::global_dof_index,
+               std::pair<std::array<types::global_dof_index, 3>, Point<3>>>
+                                        vertices;
+      std::set<types::global_dof_index> held_angles;
+    };
+    const std::vector<Support> &
+    supports() const
+    {
+      return support_list;
+    }
+
   private:
     // A pinned dof (locally relevant): dof, component, reference position of its vertex.
     struct PinnedDof
@@ -76,6 +98,7 @@ namespace clothsim
     std::vector<PinnedDof>            pinned;
     std::set<types::global_dof_index> pinned_dofs;
     std::set<types::global_dof_index> clamped_angle_dofs;
+    std::vector<Support>              support_list;
     mutable FunctionParser<3>         pinned_displacement;
     FunctionParser<3>                 initial_displacement;
     FunctionParser<3>                 initial_velocity;

@@ -54,6 +54,15 @@ namespace clothsim
                        "Constraints/Clamped groups",
                        "clamping holds the shell's rotation, which only exists with "
                        "bending; set Material/Bending, or pin the group instead");
+    for (const PinnedGroup &group : parameters.constraints.pinned_groups)
+      if (group.rotation &&
+          (!parameters.material.bending || parameters.scene.model != Model::fem))
+        throw InputError(parameter_file,
+                         "Constraints/Pinned groups",
+                         "'" + group.name +
+                           ": ...r' holds the shell's rotation, which only exists in "
+                           "the finite elements with bending; set Material/Bending, or "
+                           "leave out 'r'");
     boundary_conditions = std::make_unique<BoundaryConditions>(discretization,
                                                                parameters,
                                                                parameter_file,
@@ -158,6 +167,110 @@ namespace clothsim
   ClothModel::internal_forces(const VectorType &u, VectorType &forces) const
   {
     model->elastic_forces(u, forces);
+  }
+
+
+  std::vector<SupportReaction>
+  ClothModel::support_reactions(const VectorType &u, const double time) const
+  {
+    const auto &supports = boundary_conditions->supports();
+    if (supports.empty())
+      return {};
+    VectorType forces;
+    initialize_owned(forces);
+    StepTerms step;
+    step.load_factor  = is_static(parameters.time.integrator) ? time : 1.;
+    step.time         = time;
+    const bool linear = parameters.time.integrator == Integrator::linear_static;
+    if (!linear)
+      model->static_forces(u, step, forces);
+    else
+      {
+        // The linear problem's R = K0 u - f, with K0 u the derivative of the static
+        // forces S along u at the reference state by central differences,
+        // (S(εu) - S(-εu)) / 2ε (exact to O(ε²): ε u at most 1e-5 of the mesh's
+        // size), and -f = S(0) (no stress there).
+        const double largest = u.linfty_norm();
+        const double epsilon = largest > 0. ? 1e-5 * reference_size() / largest : 1.;
+        VectorType   owned, scaled, plus, minus;
+        initialize_owned(owned);
+        initialize_ghosted(scaled);
+        initialize_owned(plus);
+        initialize_owned(minus);
+        for (const double sign : {1., -1., 0.})
+          {
+            for (const types::global_dof_index i : owned_dofs())
+              owned[i] = sign * epsilon * u(i);
+            owned.compress(VectorOperation::insert);
+            scaled = owned;
+            model->static_forces(scaled,
+                                 step,
+                                 sign > 0.   ? plus
+                                 : sign < 0. ? minus
+                                             : forces);
+          }
+        plus -= minus;
+        forces.add(0.5 / epsilon, plus);
+      }
+
+    const IndexSet              &owned = owned_dofs();
+    const MPI_Comm               comm  = get_communicator();
+    std::vector<SupportReaction> reactions;
+    for (const BoundaryConditions::Support &support : supports)
+      {
+        // Linear theory: lever arms in the reference configuration.
+        const auto position = [&u,
+                               linear](const std::array<types::global_dof_index, 3> &dofs,
+                                       const Point<3>                               &X) {
+          Point<3> x = X;
+          if (!linear)
+            for (unsigned int d = 0; d < 3; ++d)
+              x[d] += u(dofs[d]);
+          return x;
+        };
+        // Centroid: each vertex counted by the rank owning its x dof.
+        Point<3> sum;
+        double   count = 0.;
+        for (const auto &[x_dof, vertex] : support.vertices)
+          if (owned.is_element(x_dof))
+            {
+              sum += position(vertex.first, vertex.second) - Point<3>();
+              count += 1.;
+            }
+        for (unsigned int d = 0; d < 3; ++d)
+          sum[d] = Utilities::MPI::sum(sum[d], comm);
+        count                 = Utilities::MPI::sum(count, comm);
+        const Point<3> centre = count > 0. ? Point<3>(sum / count) : Point<3>();
+
+        Tensor<1, 3> force, moment;
+        for (const auto &[x_dof, vertex] : support.vertices)
+          if (owned.is_element(x_dof))
+            {
+              const auto  &dofs = vertex.first;
+              Tensor<1, 3> R;
+              for (unsigned int d = 0; d < 3; ++d)
+                if (support.pinned.count(dofs[d]) > 0)
+                  R[d] = forces(dofs[d]);
+              force += R;
+              moment += cross_product_3d(position(dofs, vertex.second) - centre, R);
+            }
+        for (const mesh::Discretization::Edge &edge : discretization.edges())
+          if (support.held_angles.count(edge.angle_dof) > 0 &&
+              owned.is_element(edge.angle_dof))
+            {
+              const Tensor<1, 3> t =
+                position(edge.vertex_dofs[1], edge.reference_points[1]) -
+                position(edge.vertex_dofs[0], edge.reference_points[0]);
+              moment += forces(edge.angle_dof) / t.norm() * t;
+            }
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            force[d]  = Utilities::MPI::sum(force[d], comm);
+            moment[d] = Utilities::MPI::sum(moment[d], comm);
+          }
+        reactions.push_back({support.name, centre, force, moment});
+      }
+    return reactions;
   }
 
 

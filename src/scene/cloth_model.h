@@ -279,6 +279,14 @@ namespace clothsim
              physics::RankVector &damping_force) const override;
     io::FrameData
     output_fields(const VectorType &u, const VectorType &v) const override;
+
+    // Reaction of each pinned and clamped group: R = ∇Π_static at its pinned dofs (the
+    // elastic, load and contact terms' gradient, which the pins balance; quasi-static:
+    // no inertia, damping or friction), summed, and the moment about the group's
+    // vertex centroid c, Σ (x_i - c) × R_i + Σ_e (∂Π/∂ψ_e) t_e over its held edges
+    // (t_e the edge's current unit direction, about which ψ_e turns the director).
+    std::vector<SupportReaction>
+    support_reactions(const VectorType &u, const double time) const override;
     // (scene/cloth_model_checkpoint.cc)
     void
     save_state(io::CheckpointData &rank) const override;

@@ -59,9 +59,9 @@ namespace clothsim
     const MaterialParameters &material = parameters.material;
     const double              alpha    = parameters.damping.mass_proportional;
     const double              beta     = parameters.damping.stiffness_proportional;
-    const bool   dynamic = parameters.time.integrator != Integrator::static_load_steps;
-    const bool   fem     = parameters.scene.model == Model::fem;
-    const double rho     = material.areal_density;
+    const bool                dynamic  = !is_static(parameters.time.integrator);
+    const bool                fem      = parameters.scene.model == Model::fem;
+    const double              rho      = material.areal_density;
 
     // Element terms, in one cell loop (this order is the order of summation).
     const physics::MembraneTerm *membrane = nullptr;
@@ -196,8 +196,7 @@ namespace clothsim
     auto term = make_self_contact(given, parameter_file, discretization, masses, initial);
     self_contact = term.get();
     model->add(std::move(term));
-    if (parameters.time.integrator != Integrator::static_load_steps &&
-        self_contact->has_friction())
+    if (!is_static(parameters.time.integrator) && self_contact->has_friction())
       model->add(
         std::make_unique<physics::ContactFriction>(*self_contact, "self friction"));
   }

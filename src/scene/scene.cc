@@ -4,6 +4,7 @@
 
 #include "io/collective.h"
 #include "io/input_error.h"
+#include "scene/probes.h"
 
 #include <filesystem>
 #include <sstream>
@@ -45,30 +46,32 @@ namespace clothsim
         scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
     });
 
-    scene->model = std::make_unique<ClothModel>(communicator,
+    scene->model                 = std::make_unique<ClothModel>(communicator,
                                                 scene->parameters(),
                                                 parameter_file,
                                                 scene->serial_mesh,
                                                 scene->groups);
-    std::vector<std::pair<std::string, Point<3>>> points;
-    for (const Probe &probe : scene->parameters().output.probes)
-      points.emplace_back(probe.name, probe.reference_point);
+    const Parameters &parameters = scene->parameters();
+    if (parameters.time.integrator == Integrator::linear_static)
+      {
+        // K0 u = f eliminates the pinned dofs with their values: zero ones only.
+        VectorType pinned;
+        scene->model->initialize_owned(pinned);
+        scene->model->apply_pinned_displacement(1., pinned);
+        if (pinned.linfty_norm() != 0.)
+          throw InputError(parameter_file,
+                           "Constraints/Pinned displacement",
+                           "'Time/Integrator = linear static' takes loads only: the "
+                           "pinned displacements must be zero (here up to " +
+                             std::to_string(pinned.linfty_norm()) +
+                             " m at the full load); use 'static'");
+      }
     const mesh::Discretization &discretization = scene->model->get_discretization();
-    scene->probes                              = discretization.locate_probes(points);
-    // Every point of a triangle lies within its longest edge of each of its vertices: a
-    // probe farther from the nearest vertex is not on the surface.
-    const double tolerance = discretization.longest_edge();
-    for (const ProbeLocation &probe : scene->probes)
-      if (!(probe.distance <= tolerance))
-        {
-          std::ostringstream message;
-          message << "probe '" << probe.name << "' is " << probe.distance
-                  << " m from the nearest mesh vertex (" << probe.reference_point[0]
-                  << ", " << probe.reference_point[1] << ", " << probe.reference_point[2]
-                  << "), farther than the mesh's longest edge (" << tolerance
-                  << " m): it must lie on the cloth's surface";
-          throw InputError(parameter_file, "Output/Probes", message.str());
-        }
+    scene->probes =
+      locate_probes(discretization,
+                    parameters.output.probes,
+                    parameters.output.probe_tolerance * discretization.longest_edge(),
+                    parameter_file);
     return scene;
   }
 } // namespace clothsim

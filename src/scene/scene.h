@@ -7,6 +7,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include "io/parameters.h"
+#include "io/probe_location.h"
 #include "mesh/gmsh_reader.h"
 #include "scene/cloth_model.h"
 

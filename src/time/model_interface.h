@@ -8,6 +8,7 @@
 #include <deal.II/lac/affine_constraints.h>
 
 #include "io/checkpoint.h"
+#include "io/output_writer.h"
 #include "io/vtu_writer.h"
 #include "physics/term.h"
 #include "solvers/linear_solver.h"
@@ -184,5 +185,13 @@ namespace clothsim
     // The fields of an output frame at (u, v), ghosted.
     virtual io::FrameData
     output_fields(const VectorType &u, const VectorType &v) const = 0;
+
+    // Each support's reaction at u (ghosted) at `time` (the load factor in static
+    // mode), the same on every rank; none by default. Collective.
+    virtual std::vector<SupportReaction>
+    support_reactions(const VectorType & /*u*/, const double /*time*/) const
+    {
+      return {};
+    }
   };
 } // namespace clothsim

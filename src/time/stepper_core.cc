@@ -170,6 +170,10 @@ namespace clothsim
     output.write_state(step, time, u_ghosted, [this]() {
       return model.output_fields(u_ghosted, v_ghosted);
     });
+    const std::vector<SupportReaction> reactions =
+      model.support_reactions(u_ghosted, time);
+    if (!reactions.empty())
+      output.write_reactions(step, time, reactions);
     frame_step = step;
     any_frame  = true;
   }

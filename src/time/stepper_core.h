@@ -14,6 +14,7 @@
 #include "time/model_interface.h"
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -125,13 +126,24 @@ namespace clothsim
     EnergyReport
     current_energies() const
     {
-      return model.energies(u_ghosted, v_ghosted, dissipated);
+      return linearised(model.energies(u_ghosted, v_ghosted, dissipated));
     }
     // The same and the state's damping force (ModelInterface::energies).
     EnergyReport
     current_energies(physics::RankVector &damping_force) const
     {
-      return model.energies(u_ghosted, v_ghosted, dissipated, damping_force);
+      return linearised(model.energies(u_ghosted, v_ghosted, dissipated, damping_force));
+    }
+    // A linear static solution's elastic energy ½ uᵀK0u = ½ f·u (Clapeyron's theorem,
+    // with zero prescribed displacements) and the loads' potential -f·u, J, in place of
+    // the nonlinear model's (the terms' own columns stay the model's).
+    std::optional<std::pair<double, double>> linear_energies;
+    EnergyReport
+    linearised(EnergyReport report) const
+    {
+      if (linear_energies)
+        std::tie(report.elastic, report.potential) = *linear_energies;
+      return report;
     }
 
     // The statistics row of an accepted step with the energies of its state.

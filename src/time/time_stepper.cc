@@ -22,7 +22,7 @@ namespace clothsim
              model.near_null_space(),
              tangent,
              timer)
-    , dynamic(parameters.time.integrator != Integrator::static_load_steps)
+    , dynamic(!is_static(parameters.time.integrator))
   {
     model.initialize_matrix(tangent);
     for (VectorType *vector :
@@ -174,6 +174,15 @@ namespace clothsim
     attempt.newton = newton.solve(problem, u_new, newton_floor);
     if (!attempt.newton.converged)
       return attempt;
+    if (parameters.time.integrator == Integrator::linear_static)
+      {
+        // f = -F(0): the residual at the reference state is the loads' (no stress).
+        VectorType reference(u_new), residual(u_new);
+        reference = 0.;
+        problem.residual(reference, residual);
+        const double work = -(residual * u_new);
+        linear_energies   = std::make_pair(0.5 * work, -work);
+      }
     // 'Contact/Friction updates': friction's normal forces taken again at the solution
     // and the step solved again, until they settle (0.1 %).
     for (unsigned int update = 1; update < parameters.contact.friction_updates; ++update)
@@ -246,9 +255,12 @@ namespace clothsim
     last_increment -= u_n;
     last_load_increment = dt;
     u_n                 = u_new;
-    // The terms' after-step hooks (shell directors re-based, angles back to zero).
+    // The terms' after-step hooks (shell directors re-based, angles back to zero); a
+    // linear solution keeps its angles about the reference directors, so that its
+    // reactions are taken about the reference state (ClothModel::support_reactions).
     u_ghosted = u_n;
-    model.commit_step(u_ghosted, u_n);
+    if (parameters.time.integrator != Integrator::linear_static)
+      model.commit_step(u_ghosted, u_n);
     u_ghosted = u_n;
     v_ghosted = v_n;
   }
