@@ -107,6 +107,7 @@ namespace clothsim
     Tensor<1, 3>           gravity;      // m/s²
     std::vector<GroupLoad> point_forces; // N
     std::vector<GroupLoad> line_forces;  // N/m
+    std::vector<GroupLoad> line_moments; // N·m/m, about the group's edges
     double                 pressure; // Pa, along the mesh normal of the current surface
 
     static void

@@ -58,6 +58,18 @@ namespace clothsim
       "'name: qx, qy, qz; ...', lumped onto the edges' vertices. Dead loads; "
       "scaled by the load factor in static mode.");
     prm.declare_entry(
+      "Line moments",
+      "",
+      group_vectors,
+      "Bending moments in N·m per m of reference length along gmsh boundary line "
+      "groups: 'name: mx, my, mz; ...', a vector along the group's edges (a moment "
+      "about the edge, e.g. 'tip: 0, M, 0' on an edge along y; a component across "
+      "an edge, a twisting moment, is an input error). Each edge's share m ℓ acts "
+      "on its director angle: it turns the shell about the edge, following the "
+      "edge. Needs 'Material/Bending'. Scaled by the load factor in static mode. "
+      "Their work is not in statistics.csv's external_work (the angles restart "
+      "from zero every step).");
+    prm.declare_entry(
       "Pressure",
       "0",
       Patterns::Double(),
@@ -79,6 +91,7 @@ namespace clothsim
       gravity[d] = values[d];
     point_forces = group_loads(prm.get("Point forces"));
     line_forces  = group_loads(prm.get("Line forces"));
+    line_moments = group_loads(prm.get("Line moments"));
     pressure     = prm.get_double("Pressure");
     prm.leave_subsection();
   }

@@ -148,7 +148,8 @@ namespace clothsim
         if (spring_damping)
           model->add(std::move(spring_damping));
       }
-    if (!parameters.loads.point_forces.empty() || !parameters.loads.line_forces.empty())
+    if (!parameters.loads.point_forces.empty() || !parameters.loads.line_forces.empty() ||
+        !parameters.loads.line_moments.empty())
       model->add(std::make_unique<physics::ExternalLoads>(
         resolve_group_loads(discretization,
                             parameters.loads,

@@ -5,7 +5,9 @@
 
 #include "io/input_error.h"
 
+#include <map>
 #include <set>
+#include <vector>
 
 namespace clothsim
 {
@@ -77,6 +79,62 @@ namespace clothsim
                       }
                   forces.add(dofs, values);
                 }
+      }
+    forces.compress(VectorOperation::add);
+
+    // Line moments: (m · t_e) ℓ_e on the director angle of every boundary edge of the
+    // group, t_e the edge's unit direction as its angle is oriented (the angle turns
+    // the director about t_e; mesh::Discretization::Edge).
+    if (!loads.line_moments.empty() && !discretization.has_directors())
+      throw InputError(parameter_file,
+                       "Loads/Line moments",
+                       "a moment turns the shell's directors, which only exist with "
+                       "bending; set Material/Bending");
+    std::map<types::global_dof_index, const mesh::Discretization::Edge *> edge_of;
+    for (const mesh::Discretization::Edge &edge : discretization.edges())
+      edge_of[edge.angle_dof] = &edge;
+    const auto &vertex_component = discretization.local_dof_vertex_component();
+    std::vector<types::global_dof_index> dof_indices(
+      discretization.get_fe().n_dofs_per_cell());
+    for (const GroupLoad &load : loads.line_moments)
+      {
+        const auto group = groups.line_groups.find(load.name);
+        if (group == groups.line_groups.end())
+          throw InputError(parameter_file,
+                           "Loads/Line moments",
+                           "the mesh has no boundary line group named '" + load.name +
+                             "'");
+        double across = 0.; // largest component across an edge, N·m/m
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(dof_indices);
+              for (unsigned int i = 0; i < dof_indices.size(); ++i)
+                {
+                  const auto [vertex, component] = vertex_component[i];
+                  if (component != 3 || vertex < 3 ||
+                      !cell->line(vertex - 3)->at_boundary() ||
+                      cell->line(vertex - 3)->boundary_id() !=
+                        types::boundary_id(group->second))
+                    continue;
+                  const mesh::Discretization::Edge &edge = *edge_of.at(dof_indices[i]);
+                  const Tensor<1, 3>                e =
+                    edge.reference_points[1] - edge.reference_points[0];
+                  const Tensor<1, 3> t = e / e.norm();
+                  across = std::max(across, (load.value - (load.value * t) * t).norm());
+                  forces.add(std::vector<types::global_dof_index>{dof_indices[i]},
+                             std::vector<double>{(load.value * t) * e.norm()});
+                }
+            }
+        if (Utilities::MPI::max(across, communicator) > 1e-9 * load.value.norm())
+          throw InputError(parameter_file,
+                           "Loads/Line moments",
+                           "the moment on '" + load.name +
+                             "' has a component across the group's edges (a twisting "
+                             "moment, up to " +
+                             std::to_string(Utilities::MPI::max(across, communicator)) +
+                             " N·m/m), which the shell does not take: give it along the "
+                             "edges");
       }
     forces.compress(VectorOperation::add);
     constraints.set_zero(forces);
