@@ -2,8 +2,10 @@
 
 // The boundary conditions and initial state of a scene: pinned groups (points, lines or
 // surfaces of the mesh; any of x, y, z) with their prescribed displacement (an expression
-// of x, y, z, t), clamped boundary lines (every component pinned and the edge's director
-// angle held), and the initial displacement and velocity (expressions of x, y, z).
+// of x, y, z, t; on line groups also 'r', the director angle about the edge), clamped
+// boundary lines (every component pinned and the edge's director angle held), and the
+// initial displacement and velocity (expressions of x, y, z). Each group is also a
+// support whose reaction the output reports (supports()).
 // Pinned and clamped dofs, and the unused angle dofs of the discretization, become
 // homogeneous constraints: Newton's updates there are zero, and the prescribed values
 // are set before each step.
@@ -39,7 +41,8 @@ namespace clothsim
     {
       return constraint_set;
     }
-    // Angle dofs of the clamped edges (locally relevant).
+    // Angle dofs whose rotation is held (locally relevant): the edges of clamped groups
+    // and of pinned line groups with component 'r'.
     const std::set<types::global_dof_index> &
     clamped_angles() const
     {
