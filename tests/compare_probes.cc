@@ -1,5 +1,6 @@
 // compare_probes A.csv B.csv RELATIVE ABSOLUTE
-// Compares two probes.csv files row by row (same steps, times and probes) and their
+// Compares two probes.csv files row by row (same steps, times and probes; times to
+// RELATIVE, since an arc-length path's load factors are computed) and their
 // positions and displacements, or two reactions.csv files (same steps, times and
 // groups) and their centres, forces and moments: every number after the probe or group
 // column, |a - b| <= max(ABSOLUTE, RELATIVE * max(|a|, |b|)). Prints the worst
@@ -40,7 +41,8 @@ main(int argc, char **argv)
     {
       if (a.rows[r][a.column(key)] != b.rows[r][b.column(key)] ||
           a.rows[r][a.column("step")] != b.rows[r][b.column("step")] ||
-          std::abs(a.number(r, "time") - b.number(r, "time")) > 1e-12)
+          std::abs(a.number(r, "time") - b.number(r, "time")) >
+            std::max(1e-12, relative * std::abs(a.number(r, "time"))))
         {
           std::cout << "FAILED: row " << r + 1 << " is a different step or " << key
                     << "\n";

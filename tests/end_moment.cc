@@ -9,6 +9,10 @@
 // The full circle, M = 2 pi EI / L as the scene ships, stops at theta = 0.95 x 2 pi
 // (README, "Loads"); with every vertex's u_y held (no lateral or twisting motion) it
 // closes: the tip must end within 1e-3 L of the root, u = (-L, 0, 0) (measured 5.7e-4 L).
+// The moments' work (statistics.csv's external_work, the edges' rotations accumulated
+// over the steps) must be M theta, and the stored energy half the work of the moment at
+// the step's load factor (Clapeyron: the elastica's moment-curvature law is linear), both
+// to 1e-3 at every step (measured 4.8e-4 and 2.4e-4).
 
 #include "csv.h"
 #include "test_support.h"
@@ -48,6 +52,30 @@ main(int argc, char **argv)
       worst = std::max(worst, gap);
     }
   bool passed = check_at_most(pcout, "load steps written", 19, probes.rows.size());
+
+  // The moments' work in statistics.csv: external_work = M θ (the full moment over the
+  // tip edge's accumulated rotation θ = λ M L/EI), and the elastica stores half of the
+  // work of the moment at the step's factor, ½ λ M θ (bending energy ½ EI κ² L, κ = λ
+  // M/EI): elastic = ½ λ external_work, and external_work = M θ.
+  const Csv statistics = read_csv(directory + "/statistics.csv");
+  double    worst_work = 0., worst_clapeyron = 0.;
+  for (unsigned int r = 1; r < statistics.rows.size(); ++r)
+    {
+      const double lambda = statistics.number(r, "time");
+      const double work   = statistics.number(r, "external_work");
+      const double theta  = lambda * M * L / EI;
+      worst_work          = std::max(worst_work, std::abs(work / (M * theta) - 1.));
+      worst_clapeyron =
+        std::max(worst_clapeyron,
+                 std::abs(statistics.number(r, "elastic_energy") / (0.5 * lambda * work) -
+                          1.));
+    }
+  passed &=
+    check_below(pcout, "largest |external_work / (M theta) - 1|", worst_work, 1e-3);
+  passed &= check_below(pcout,
+                        "largest |elastic / (lambda external_work / 2) - 1|",
+                        worst_clapeyron,
+                        1e-3);
 
   const std::string planar = scratch_directory("clothsim-end-moment-planar");
   const SceneRun    circle =

@@ -147,8 +147,10 @@ namespace clothsim::test
           model.get_boundary_conditions().clamped_angles()));
       }
     else if (name == "external loads")
-      result->add(std::make_unique<physics::ExternalLoads>(resolve_group_loads(
-        mesh, parameters.loads, model.get_constraints(), parameter_file, scene.groups)));
+      result->add(std::make_unique<physics::ExternalLoads>(
+        resolve_group_loads(
+          mesh, parameters.loads, model.get_constraints(), parameter_file, scene.groups),
+        mesh.owned_angle_dofs()));
     else if (name == "springs" || name == "spring damping")
       {
         // Springs of their own (as scene/cloth_model.cc makes them), each term with its

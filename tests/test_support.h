@@ -11,6 +11,7 @@
 #include "io/output_writer.h"
 #include "scene/scene.h"
 #include "test_checks.h"
+#include "time/arc_length_stepper.h"
 #include "time/explicit_stepper.h"
 #include "time/time_stepper.h"
 
@@ -138,6 +139,13 @@ namespace clothsim::test
     if (is_explicit(run.scene->parameters().time.integrator))
       {
         ExplicitStepper stepper(run.scene->parameters(), model, output, pcout, timer);
+        run.summary      = stepper.run();
+        run.displacement = stepper.displacement();
+        run.velocity     = stepper.velocity();
+      }
+    else if (run.scene->parameters().time.integrator == Integrator::arc_length)
+      {
+        ArcLengthStepper stepper(run.scene->parameters(), model, output, pcout, timer);
         run.summary      = stepper.run();
         run.displacement = stepper.displacement();
         run.velocity     = stepper.velocity();

@@ -107,7 +107,9 @@ namespace clothsim
   bool
   supports_checkpoints(const Parameters &parameters)
   {
-    return !is_explicit(parameters.time.integrator) && !parameters.contact.self_contact;
+    return !is_explicit(parameters.time.integrator) &&
+           parameters.time.integrator != Integrator::arc_length &&
+           !parameters.contact.self_contact;
   }
 
 

@@ -8,6 +8,7 @@
 #include "io/input_error.h"
 #include "io/output_file.h"
 #include "io/provenance.h"
+#include "time/arc_length_stepper.h"
 #include "time/explicit_stepper.h"
 #include "time/time_stepper.h"
 
@@ -185,6 +186,13 @@ namespace clothsim
           if (is_explicit(parameters.time.integrator))
             outcome.summary =
               ExplicitStepper(parameters, *scene.model, *output, pcout, timer).run();
+          else if (parameters.time.integrator == Integrator::arc_length)
+            {
+              // The load factor falls along a path: ParaView gets the frames by step.
+              output->number_frames_by_step();
+              outcome.summary =
+                ArcLengthStepper(parameters, *scene.model, *output, pcout, timer).run();
+            }
           else
             {
               TimeStepper stepper(parameters, *scene.model, *output, pcout, timer);
@@ -363,6 +371,8 @@ namespace clothsim
           return "static";
         case Integrator::linear_static:
           return "linear static";
+        case Integrator::arc_length:
+          return "arc length";
         case Integrator::symplectic_euler:
           return "symplectic euler";
         case Integrator::velocity_verlet:

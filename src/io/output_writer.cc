@@ -130,7 +130,7 @@ namespace clothsim
       {
         const std::string stem = "solution-" + Utilities::int_to_string(frames.size(), 5);
         frames.emplace_back(
-          time,
+          frames_by_step ? static_cast<double>(step) : time,
           io::write_vtu_frame(directory, stem, piece, fields(), time, communicator));
       }
     if (frame_observer)

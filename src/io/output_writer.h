@@ -113,6 +113,15 @@ namespace clothsim
       frame_observer = observer;
     }
 
+    // solution.pvd gives each frame its step number as its time instead of the state's
+    // time (an arc-length path's load factor, which can fall: ParaView orders frames by
+    // that value). The CSV files and the frames' own time field keep the state's.
+    void
+    number_frames_by_step()
+    {
+      frames_by_step = true;
+    }
+
     // The run's closing summary, for its log: each probe's displacement in the last
     // written state, the energies of the first and last statistics rows and the work
     // dissipated (columns named *_dissipated), with the balance total + dissipated, and
@@ -137,6 +146,7 @@ namespace clothsim
     io::RowFile                                 reactions_csv; // opened on first use
     bool                                        reactions_open = false;
     std::vector<std::pair<double, std::string>> frames;
+    bool                                        frames_by_step = false;
     FrameObserver                               frame_observer;
     // For print_summary(): the last state's time and probe values (3 per probe), the
     // first and last statistics rows.

@@ -312,6 +312,17 @@ namespace clothsim
         "vector field takes the drag at velocities from 0 to twice the "
         "step's: 4/3 of it in still air): use 'backward euler', 'bdf2' or 'implicit "
         "midpoint', or set the density to 0");
+    if (integrator == Integrator::arc_length && parameters.linear_solver.method == "cg")
+      throw InputError(file,
+                       "Linear solver/Method",
+                       "'arc length' follows the path past limit points, where the "
+                       "tangent is indefinite and CG breaks down: use 'direct' or "
+                       "'gmres'");
+    if (integrator == Integrator::arc_length &&
+        parameters.output.checkpoint_interval > 0.)
+      throw InputError(file,
+                       "Output/Checkpoint interval",
+                       "'arc length' runs write no checkpoints; set it to 0");
     for (const Probe &probe : input.parameters.output.probes)
       if (probe.name.empty() || probe.name.find(',') != std::string::npos)
         throw InputError(file,

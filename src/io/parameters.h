@@ -108,7 +108,9 @@ namespace clothsim
     std::vector<GroupLoad> point_forces; // N
     std::vector<GroupLoad> line_forces;  // N/m
     std::vector<GroupLoad> line_moments; // N·m/m, about the group's edges
-    double                 pressure; // Pa, along the mesh normal of the current surface
+    // 'fx; fy; fz' in x, y, z (N/m² of reference area); "0; 0; 0": none
+    std::string surface_forces;
+    double      pressure; // Pa, along the mesh normal of the current surface
 
     static void
     declare_parameters(ParameterHandler &prm);
@@ -155,6 +157,7 @@ namespace clothsim
     backward_euler,
     static_load_steps,
     linear_static,       // one linear solve about the reference state
+    arc_length,          // the equilibrium path by arc-length continuation
     symplectic_euler,    // explicit
     velocity_verlet,     // explicit
     bdf2,                // implicit, second order, variable step
@@ -167,7 +170,8 @@ namespace clothsim
   is_static(const Integrator integrator)
   {
     return integrator == Integrator::static_load_steps ||
-           integrator == Integrator::linear_static;
+           integrator == Integrator::linear_static ||
+           integrator == Integrator::arc_length;
   }
 
   // The implicit midpoint rule and its energy-conserving variant solve for the step's
@@ -196,6 +200,7 @@ namespace clothsim
     double       minimum_step_fraction; // of the nominal step: the progress guard
     unsigned int load_steps;            // static mode: initial (or fixed) increments
     bool         adaptive_load_steps;   // static mode: grow increments that converge fast
+    unsigned int maximum_arc_length_steps; // arc length: the path's longest run of steps
     // Adaptive time steps: local error estimate below tolerance + relative ||u||_inf.
     bool   adaptive_time_steps;
     double error_tolerance;          // m

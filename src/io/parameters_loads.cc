@@ -67,8 +67,17 @@ namespace clothsim
       "an edge, a twisting moment, is an input error). Each edge's share m ℓ acts "
       "on its director angle: it turns the shell about the edge, following the "
       "edge. Needs 'Material/Bending'. Scaled by the load factor in static mode. "
-      "Their work is not in statistics.csv's external_work (the angles restart "
-      "from zero every step).");
+      "Their work m ψ, ψ the edges' rotation accumulated over the steps, is in "
+      "statistics.csv's external_work.");
+    prm.declare_entry(
+      "Surface forces",
+      "0; 0; 0",
+      Patterns::List(Patterns::Anything(), 3, 3, ";"),
+      "Forces in N per m² of reference area on the whole surface: 'fx; fy; fz', "
+      "expressions in the reference coordinates x, y, z (m), e.g. a sinusoidal "
+      "load '0; 0; -100*sin(pi*x)'. Dead loads, scaled by the load factor in static "
+      "mode; each triangle carries the consistent load of f interpolated linearly "
+      "between its vertices, ∫ f N_i dA = A (2 f_i + f_j + f_k) / 12.");
     prm.declare_entry(
       "Pressure",
       "0",
@@ -89,10 +98,11 @@ namespace clothsim
       Utilities::string_to_double(Utilities::split_string_list(prm.get("Gravity"), ','));
     for (unsigned int d = 0; d < 3; ++d)
       gravity[d] = values[d];
-    point_forces = group_loads(prm.get("Point forces"));
-    line_forces  = group_loads(prm.get("Line forces"));
-    line_moments = group_loads(prm.get("Line moments"));
-    pressure     = prm.get_double("Pressure");
+    point_forces   = group_loads(prm.get("Point forces"));
+    line_forces    = group_loads(prm.get("Line forces"));
+    line_moments   = group_loads(prm.get("Line moments"));
+    surface_forces = prm.get("Surface forces");
+    pressure       = prm.get_double("Pressure");
     prm.leave_subsection();
   }
 

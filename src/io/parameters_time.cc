@@ -13,7 +13,7 @@ namespace clothsim
       "backward euler",
       Patterns::Selection(
         "backward euler|bdf2|implicit midpoint|average vector field|static|linear static|"
-        "symplectic euler|velocity verlet"),
+        "arc length|symplectic euler|velocity verlet"),
       "'backward euler': implicit dynamics, each step the minimiser of the "
       "incremental potential (first order, damps high frequencies). 'bdf2': "
       "second-order backward differentiation with variable steps (the first "
@@ -31,7 +31,21 @@ namespace clothsim
       "K0 u = f about the reference state (K0 the tangent there, f the loads at full "
       "value): the answer scales with the loads. It takes one load step of size 1 ('Load "
       "steps' and the 'Nonlinear solver' section are not used) and needs the pinned "
-      "displacements to be zero. 'symplectic "
+      "displacements to be zero. 'arc length': the static equilibrium path by "
+      "arc-length continuation (Riks' normal-plane method, Crisfield 1991), which "
+      "follows limit points (snap-through) and snap-backs where load control stops: "
+      "each step advances a distance along the path in (displacement, load factor) "
+      "space, the first by 1/'Load steps' in the load factor; 'Adaptive load steps' "
+      "lets it grow or shrink by the corrector's iterations; the run ends where the "
+      "path reaches load factor 1 (solved there exactly), and the load factor is the "
+      "time column of the output files (solution.pvd numbers the frames by step, "
+      "since the load factor can fall). Loads only (zero pinned displacements), no "
+      "contact; the corrector is full Newton with the exact tangent (the 'Nonlinear "
+      "solver' tolerances and 'Maximum iterations' apply, its method, line search and "
+      "tangent do not), and past a limit point the tangent is indefinite: 'Linear "
+      "solver/Method' must be 'direct' or 'gmres'. With MUMPS the log reports the "
+      "tangent's negative eigenvalues (unstable modes) where their number changes. "
+      "'symplectic "
       "euler' (v first, then x; first order) and 'velocity verlet' (second "
       "order): explicit, one force evaluation per step, stable only below the "
       "critical step 2/omega_max, which the run estimates and prints (a warning "
@@ -110,6 +124,12 @@ namespace clothsim
                       Patterns::List(Patterns::Anything(), 3, 3, ";"),
                       "Velocity at t = 0 in m/s: 'vx; vy; vz' in x, y, z (m). Dynamic "
                       "integrators only.");
+    prm.declare_entry("Maximum arc-length steps",
+                      "1000",
+                      Patterns::Integer(1, 1000000),
+                      "'arc length': a path that has not reached load factor 1 after "
+                      "this many steps stops the run with an error (exit code 2), its "
+                      "output kept.");
     prm.declare_entry(
       "Adaptive load steps",
       "false",
@@ -127,6 +147,7 @@ namespace clothsim
     const std::string name   = prm.get("Integrator");
     integrator               = name == "static"          ? Integrator::static_load_steps
                                : name == "linear static" ? Integrator::linear_static
+                               : name == "arc length"    ? Integrator::arc_length
                                : name == "bdf2"          ? Integrator::bdf2
                                : name == "implicit midpoint" ? Integrator::implicit_midpoint
                                : name == "average vector field" ? Integrator::average_vector_field
@@ -139,6 +160,7 @@ namespace clothsim
     minimum_step_fraction    = prm.get_double("Minimum time step fraction");
     load_steps               = prm.get_integer("Load steps");
     adaptive_load_steps      = prm.get_bool("Adaptive load steps");
+    maximum_arc_length_steps = prm.get_integer("Maximum arc-length steps");
     adaptive_time_steps      = prm.get_bool("Adaptive time steps");
     error_tolerance          = prm.get_double("Error tolerance");
     relative_error_tolerance = prm.get_double("Relative error tolerance");

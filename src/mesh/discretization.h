@@ -134,6 +134,14 @@ namespace clothsim
       {
         return displacement_dofs;
       }
+      // The owned director-angle dofs (none without directors).
+      IndexSet
+      owned_angle_dofs() const
+      {
+        IndexSet angles = locally_owned_dofs;
+        angles.subtract_set(displacement_dofs);
+        return angles;
+      }
       types::global_dof_index
       n_dofs() const
       {

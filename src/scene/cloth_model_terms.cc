@@ -148,14 +148,14 @@ namespace clothsim
         if (spring_damping)
           model->add(std::move(spring_damping));
       }
-    if (!parameters.loads.point_forces.empty() || !parameters.loads.line_forces.empty() ||
-        !parameters.loads.line_moments.empty())
+    if (has_group_loads(parameters.loads))
       model->add(std::make_unique<physics::ExternalLoads>(
         resolve_group_loads(discretization,
                             parameters.loads,
                             boundary_conditions->constraints(),
                             parameter_file,
-                            groups)));
+                            groups),
+        discretization.owned_angle_dofs()));
 
     // Contact with rigid obstacles: the barrier, and friction where μ > 0 (dynamic).
     const ContactParameters &given = parameters.contact;

@@ -4,6 +4,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include "io/input_error.h"
+#include "scene/boundary_conditions.h"
 
 #include <map>
 #include <set>
@@ -11,6 +12,70 @@
 
 namespace clothsim
 {
+  namespace
+  {
+    // Whether 'fx; fy; fz' are all the literal zero (no surface forces).
+    bool
+    is_zero(const std::string &expressions)
+    {
+      for (const std::string &e : Utilities::split_string_list(expressions, ';'))
+        if (e != "0")
+          return false;
+      return true;
+    }
+
+
+    // A (2 f_i + f_j + f_k) / 12 on vertex i of every locally owned triangle.
+    void
+    add_surface_forces(const mesh::Discretization &discretization,
+                       const std::string          &expressions,
+                       const std::string          &parameter_file,
+                       VectorType                 &forces)
+    {
+      FunctionParser<3> density(3);
+      parse_vector_function(
+        density, expressions, false, parameter_file, "Loads/Surface forces");
+      std::vector<std::pair<unsigned int, Point<3>>> samples;
+      for (const auto &element : discretization.elements())
+        for (unsigned int v = 0; v < 3; ++v)
+          for (unsigned int c = 0; c < 3; ++c)
+            samples.emplace_back(c, element.reference[v]);
+      check_finite(density,
+                   samples,
+                   discretization.get_communicator(),
+                   parameter_file,
+                   "Loads/Surface forces");
+      std::vector<types::global_dof_index> dofs(9);
+      std::vector<double>                  values(9);
+      for (const auto &element : discretization.elements())
+        {
+          Tensor<1, 3> f[3], sum;
+          for (unsigned int v = 0; v < 3; ++v)
+            {
+              for (unsigned int c = 0; c < 3; ++c)
+                f[v][c] = density.value(element.reference[v], c);
+              sum += f[v];
+            }
+          for (unsigned int v = 0; v < 3; ++v)
+            for (unsigned int c = 0; c < 3; ++c)
+              {
+                dofs[3 * v + c]   = element.dofs[3 * v + c];
+                values[3 * v + c] = element.area * (f[v][c] + sum[c]) / 12.;
+              }
+          forces.add(dofs, values);
+        }
+    }
+  } // namespace
+
+
+  bool
+  has_group_loads(const LoadParameters &loads)
+  {
+    return !loads.point_forces.empty() || !loads.line_forces.empty() ||
+           !loads.line_moments.empty() || !is_zero(loads.surface_forces);
+  }
+
+
   VectorType
   resolve_group_loads(const mesh::Discretization      &discretization,
                       const LoadParameters            &loads,
@@ -80,6 +145,8 @@ namespace clothsim
                   forces.add(dofs, values);
                 }
       }
+    if (!is_zero(loads.surface_forces))
+      add_surface_forces(discretization, loads.surface_forces, parameter_file, forces);
     forces.compress(VectorOperation::add);
 
     // Line moments: (m · t_e) ℓ_e on the director angle of every boundary edge of the

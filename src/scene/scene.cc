@@ -52,17 +52,23 @@ namespace clothsim
                                                 scene->serial_mesh,
                                                 scene->groups);
     const Parameters &parameters = scene->parameters();
-    if (parameters.time.integrator == Integrator::linear_static)
+    if (parameters.time.integrator == Integrator::linear_static ||
+        parameters.time.integrator == Integrator::arc_length)
       {
-        // K0 u = f eliminates the pinned dofs with their values: zero ones only.
+        // K0 u = f eliminates the pinned dofs with their values, and the arc-length
+        // path is parametrised by the loads' factor alone: zero ones only.
         VectorType pinned;
         scene->model->initialize_owned(pinned);
         scene->model->apply_pinned_displacement(1., pinned);
         if (pinned.linfty_norm() != 0.)
           throw InputError(parameter_file,
                            "Constraints/Pinned displacement",
-                           "'Time/Integrator = linear static' takes loads only: the "
-                           "pinned displacements must be zero (here up to " +
+                           std::string("'Time/Integrator = ") +
+                             (parameters.time.integrator == Integrator::arc_length
+                                ? "arc length"
+                                : "linear static") +
+                             "' takes loads only: the pinned displacements must be "
+                             "zero (here up to " +
                              std::to_string(pinned.linfty_norm()) +
                              " m at the full load); use 'static'");
       }

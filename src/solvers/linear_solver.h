@@ -79,6 +79,15 @@ namespace clothsim
       return last_failure;
     }
 
+    // The negative pivots of the last MUMPS factorisation (the tangent's negative
+    // eigenvalues, by Sylvester's law of inertia; constrained rows have a positive unit
+    // diagonal), or -1 with another solver.
+    int
+    negative_pivots() const
+    {
+      return mumps ? mumps->negative_pivots() : -1;
+    }
+
     // Whether the current preconditioner reuses aggregates of an earlier tangent.
     bool
     reuses_aggregates() const
