@@ -13,6 +13,12 @@
 // over the steps) must be M theta, and the stored energy half the work of the moment at
 // the step's load factor (Clapeyron: the elastica's moment-curvature law is linear), both
 // to 1e-3 at every step (measured 4.8e-4 and 2.4e-4).
+// Rotation control (params/benchmarks/cantilever-end-rotation.prm, 'Constraints/
+// Prescribed rotations'): the tip edge turned by theta = 2 pi lambda with its position
+// free follows the same arc, and closes the full circle: the tip within 1e-4 L of the
+// arc at every step and of the root at the end (measured 1.3e-5 and 1.1e-5 L); the
+// moments that hold the tip and the root, EI theta / L, to 1e-3 of 2 pi EI / L (measured
+// 6e-4); no support force (to 1e-8).
 
 #include "csv.h"
 #include "test_support.h"
@@ -91,5 +97,57 @@ main(int argc, char **argv)
                         1e-3);
   passed &=
     check_below(pcout, "largest distance of the tip from the arc / L", worst / L, 1e-3);
+
+  // Rotation control (params/benchmarks/cantilever-end-rotation.prm): the tip edge turned
+  // by theta = 2 pi lambda, its position free, in 20 load steps to the full circle.
+  const std::string rotation = scratch_directory("clothsim-end-rotation");
+  const SceneRun    rolled =
+    run_scene(source_path("params/benchmarks/cantilever-end-rotation.prm"),
+              {},
+              rotation,
+              env.communicator);
+  const Csv rotation_probes = read_csv(rotation + "/probes.csv");
+  double    worst_rotation  = 0.;
+  for (unsigned int r = 1; r < rotation_probes.rows.size(); ++r)
+    {
+      const double theta = 2. * M_PI * rotation_probes.number(r, "time");
+      worst_rotation     = std::max(
+        worst_rotation,
+        std::hypot(rotation_probes.number(r, "ux") - L * (std::sin(theta) / theta - 1.),
+                   rotation_probes.number(r, "uz") + L * (1. - std::cos(theta)) / theta));
+    }
+  // The moments that hold both ends, EI theta / L (opposite), and no force.
+  const Csv reactions    = read_csv(rotation + "/reactions.csv");
+  double    worst_moment = 0., largest_force = 0.;
+  for (unsigned int r = 0; r < reactions.rows.size(); ++r)
+    {
+      const double theta = 2. * M_PI * reactions.number(r, "time");
+      const double sign =
+        reactions.rows[r][reactions.column("group")] == "tip_edge" ? 1. : -1.;
+      worst_moment =
+        std::max(worst_moment,
+                 std::abs(sign * reactions.number(r, "My") - EI * theta / L) /
+                   (2. * M_PI * EI / L));
+      for (const std::string force : {"Fx", "Fy", "Fz"})
+        largest_force = std::max(largest_force, std::abs(reactions.number(r, force)));
+    }
+  const Tensor<1, 3> closed = rolled.probe_displacement("tip");
+  pcout << "full circle by rotation: tip " << closed << std::endl;
+  passed &= check_below(pcout,
+                        "rotation control, full circle: |u_tip - (-L, 0, 0)| / L",
+                        (closed - Tensor<1, 3>({-L, 0., 0.})).norm() / L,
+                        1e-4);
+  passed &= check_below(pcout,
+                        "rotation control: largest distance of the tip from the arc / L",
+                        worst_rotation / L,
+                        1e-4);
+  passed &= check_below(pcout,
+                        "rotation control: largest |M_y -+ EI theta / L| / (2 pi EI / L)",
+                        worst_moment,
+                        1e-3);
+  passed &= check_below(pcout,
+                        "rotation control: largest support force / (2 pi EI / L^2)",
+                        largest_force / (2. * M_PI * EI / (L * L)),
+                        1e-8);
   return finish(pcout, passed);
 }

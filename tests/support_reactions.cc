@@ -13,7 +13,13 @@
 //     and M_y = P (L + u_x,tip), the load's lever arm shortened by the tip's pull-in, to
 //     1e-4 (measured 6.4e-6: the tip edge's vertices pull in by slightly different
 //     amounts on the unstructured mesh, the probe measures its middle);
-//  3. the clamped square plate under its weight, full and quarter model
+//  3. the same strip, linear static, under a point moment (0, M, 0) = (0, 40, 0) N·m at
+//  the
+//     tip's mid vertex (Loads/Point moments) instead of the shear: the root carries no
+//     force and the moment (0, -M, 0), to 1e-7; the strip bends as the beam,
+//     u_z = -M x²/(2 EI), at mid-span to 1e-4 (measured 6e-6) and at the tip, where the
+//     couple acts, to 2e-3 (measured 7e-4);
+//  4. the clamped square plate under its weight, full and quarter model
 //     (params/benchmarks/clamped-plate*.prm): the edges carry the weight, 1.5 kg/m² x
 //     9.81 m/s² x 1 m² = 14.715 N, the quarter's clamped edges a quarter of it; 1e-9
 //     relative.
@@ -113,6 +119,42 @@ main(int argc, char **argv)
                           "nonlinear: |M - (0, P (L + u_x,tip), 0)| / (P (L + u_x,tip))",
                           distance(r, 6, Tensor<1, 3>({0., P * (L + pull_in), 0.})),
                           1e-4);
+  }
+  {
+    // A point moment M = (0, 40, 0) N·m at the tip's mid vertex instead of the shear: a
+    // couple of forces on its triangles, no net force.
+    const double M = 40.;
+    const auto [couple, directory] =
+      run("cantilever-end-shear.prm",
+          {"Time/Integrator=linear static",
+           "Loads/Line forces=",
+           "Loads/Point moments=tip: 0, 40, 0",
+           "Output/Probes=tip: 10, 0.5, 0; mid: 5, 0.5, 0"},
+          "point-moment");
+    const auto r = last_reaction(directory, "clamped");
+    report("cantilever, point moment: root", r);
+    passed &= check_below(pcout,
+                          "point moment: |F| / (M / L)",
+                          std::hypot(r[3], r[4], r[5]) / (M / L),
+                          1e-7);
+    passed &= check_below(pcout,
+                          "point moment: |M_root - (0, -M, 0)| / M",
+                          distance(r, 6, Tensor<1, 3>({0., -M, 0.})),
+                          1e-7);
+    // Away from the point, the beam's u_z = -M x² / (2 EI) (EI = 100).
+    const double EI = 100.;
+    passed &=
+      check_below(pcout,
+                  "point moment: mid-span |u_z / (-M (L/2)² / (2 EI)) - 1|",
+                  std::abs(couple.probe_displacement("mid")[2] / (-M * L * L / 8. / EI) -
+                           1.),
+                  1e-4);
+    passed &=
+      check_below(pcout,
+                  "point moment: tip |u_z / (-M L² / (2 EI)) - 1|",
+                  std::abs(couple.probe_displacement("tip")[2] / (-M * L * L / 2. / EI) -
+                           1.),
+                  2e-3);
   }
   const double weight = 1.5 * 9.81;
   {

@@ -104,10 +104,11 @@ namespace clothsim
 
   struct LoadParameters
   {
-    Tensor<1, 3>           gravity;      // m/s²
-    std::vector<GroupLoad> point_forces; // N
-    std::vector<GroupLoad> line_forces;  // N/m
-    std::vector<GroupLoad> line_moments; // N·m/m, about the group's edges
+    Tensor<1, 3>           gravity;       // m/s²
+    std::vector<GroupLoad> point_forces;  // N
+    std::vector<GroupLoad> line_forces;   // N/m
+    std::vector<GroupLoad> line_moments;  // N·m/m, about the group's edges
+    std::vector<GroupLoad> point_moments; // N·m, couples on the vertices' triangles
     // 'fx; fy; fz' in x, y, z (N/m² of reference area); "0; 0; 0": none
     std::string surface_forces;
     double      pressure; // Pa, along the mesh normal of the current surface
@@ -140,10 +141,18 @@ namespace clothsim
     bool rotation = false; // 'r': the shell's rotation about the group's edges held
   };
 
+  // A group whose rotation is held, turned by a prescribed rotation vector instead.
+  struct PrescribedRotation
+  {
+    std::string name;
+    std::string expressions; // 'θx; θy; θz' in rad, of x, y, z and t
+  };
+
   struct ConstraintParameters
   {
-    std::vector<PinnedGroup> pinned_groups;
-    std::vector<std::string> clamped_groups; // boundary line groups
+    std::vector<PinnedGroup>        pinned_groups;
+    std::vector<std::string>        clamped_groups; // boundary line groups
+    std::vector<PrescribedRotation> prescribed_rotations;
     std::string pinned_displacement; // FunctionParser expression, x;y;z in m of (x,y,z,t)
 
     static void

@@ -7,6 +7,8 @@
 #include "io/input_error.h"
 #include "io/parameters_detail.h"
 
+#include <algorithm>
+
 namespace clothsim
 {
   using detail::vector_entry;
@@ -70,6 +72,19 @@ namespace clothsim
       "Their work m ψ, ψ the edges' rotation accumulated over the steps, is in "
       "statistics.csv's external_work.");
     prm.declare_entry(
+      "Point moments",
+      "",
+      group_vectors,
+      "Moments in N·m at every vertex of gmsh point groups: 'name: mx, my, mz; ...'. "
+      "Each is a couple of dead forces on the vertex's triangles: F_j = ω × (X_j - "
+      "X_p) on every other vertex j of a triangle at p and -Σ F_j on p, with ω such "
+      "that Σ (X_j - X_p) × F_j = M: the moment M exactly in the reference "
+      "configuration, no net force. Dead forces keep their direction, so the couple's "
+      "moment turns with its triangles to first order only: for moments through large "
+      "rotations use 'Line moments' (which follow the edges) or 'Constraints/"
+      "Prescribed rotations'. A pinned neighbour absorbs its force. Scaled by the load "
+      "factor in static mode.");
+    prm.declare_entry(
       "Surface forces",
       "0; 0; 0",
       Patterns::List(Patterns::Anything(), 3, 3, ";"),
@@ -101,6 +116,7 @@ namespace clothsim
     point_forces   = group_loads(prm.get("Point forces"));
     line_forces    = group_loads(prm.get("Line forces"));
     line_moments   = group_loads(prm.get("Line moments"));
+    point_moments  = group_loads(prm.get("Point moments"));
     surface_forces = prm.get("Surface forces");
     pressure       = prm.get_double("Pressure");
     prm.leave_subsection();
@@ -138,6 +154,19 @@ namespace clothsim
       "vertices are fixed and the shell's director along them keeps its rest "
       "direction (rotation about the edge held). Needs 'Material/Bending'. A line "
       "group in 'Pinned groups' instead is simply supported (rotation free).");
+    prm.declare_entry(
+      "Prescribed rotations",
+      "",
+      Patterns::Anything(),
+      "Rotations of groups whose rotation about their edges is held (clamped groups, "
+      "and pinned groups with 'r'), in rad instead of zero: 'name: θx, θy, θz; name2: "
+      "...', a rotation vector of expressions in the reference coordinates x, y, z "
+      "(m) and the time t (s; in static mode the load factor 0..1), e.g. 'tip: 0, "
+      "pi*t, 0' on an edge along y. Each edge turns its director by θ · t_e about "
+      "its unit direction t_e (right-handed), following the edge as it moves; a "
+      "component across an edge (a twist the edge cannot take) is an input error. "
+      "Expressions contain no ',' or ';' (a ramp: 't < 0.5 ? 2*t : 1'). Needs "
+      "'Material/Bending'.");
     prm.leave_subsection();
   }
 
@@ -170,6 +199,29 @@ namespace clothsim
       }
     pinned_displacement = prm.get("Pinned displacement");
     clamped_groups      = Utilities::split_string_list(prm.get("Clamped groups"), ';');
+    prescribed_rotations.clear();
+    for (const std::string &item :
+         Utilities::split_string_list(prm.get("Prescribed rotations"), ';'))
+      {
+        // 'name: θx, θy, θz', split at the first ':' (a ternary has more).
+        const std::size_t colon = item.find(':');
+        const auto        components =
+          colon == std::string::npos
+                   ? std::vector<std::string>()
+                   : Utilities::split_string_list(item.substr(colon + 1), ',');
+        if (colon == std::string::npos || colon == 0 || components.size() != 3 ||
+            std::any_of(components.begin(), components.end(), [](const std::string &c) {
+              return c.empty();
+            }))
+          throw InputError("",
+                           "Constraints/Prescribed rotations",
+                           "'" + item +
+                             "' is not 'name: θx, θy, θz' (three expressions in x, y, "
+                             "z, t)");
+        prescribed_rotations.push_back(
+          {Utilities::trim(item.substr(0, colon)),
+           components[0] + "; " + components[1] + "; " + components[2]});
+      }
     prm.leave_subsection();
   }
 } // namespace clothsim

@@ -287,6 +287,88 @@ namespace clothsim
                  "Time/Initial displacement");
     check_finite(
       initial_velocity, samples, communicator, parameter_file, "Time/Initial velocity");
+
+    std::vector<bool> holds_rotation;
+    for (const GroupPin &pin : group_pins)
+      holds_rotation.push_back(pin.rotation);
+    resolve_prescribed_rotations(parameters, parameter_file, holds_rotation);
+  }
+
+
+  void
+  BoundaryConditions::resolve_prescribed_rotations(
+    const Parameters        &parameters,
+    const std::string       &parameter_file,
+    const std::vector<bool> &holds_rotation)
+  {
+    const std::string entry     = "Constraints/Prescribed rotations";
+    const auto       &requested = parameters.constraints.prescribed_rotations;
+    if (!requested.empty() && !discretization.has_directors())
+      throw InputError(parameter_file,
+                       entry,
+                       "a rotation turns the shell's directors, which only exist with "
+                       "bending; set Material/Bending");
+    std::map<types::global_dof_index, const mesh::Discretization::Edge *> edge_of;
+    for (const mesh::Discretization::Edge &edge : discretization.edges())
+      edge_of[edge.angle_dof] = &edge;
+    for (unsigned int r = 0; r < requested.size(); ++r)
+      {
+        unsigned int g = 0;
+        while (g < support_list.size() &&
+               !(support_list[g].name == requested[r].name && holds_rotation[g]))
+          ++g;
+        if (g == support_list.size())
+          throw InputError(parameter_file,
+                           entry,
+                           "'" + requested[r].name +
+                             "' is no group whose rotation is held: add it to 'Clamped "
+                             "groups', or give it 'r' in 'Pinned groups'");
+        rotations.push_back(std::make_unique<FunctionParser<3>>(3));
+        parse_vector_function(
+          *rotations.back(), requested[r].expressions, true, parameter_file, entry);
+        for (const types::global_dof_index dof : support_list[g].held_angles)
+          if (discretization.owned_dofs().is_element(dof))
+            {
+              const mesh::Discretization::Edge &edge = *edge_of.at(dof);
+              const Tensor<1, 3> e = edge.reference_points[1] - edge.reference_points[0];
+              prescribed_angles.push_back(
+                {dof,
+                 e / e.norm(),
+                 Point<3>(0.5 * (edge.reference_points[0] + edge.reference_points[1])),
+                 r});
+            }
+      }
+
+    // The rotation at a few times: finite, and about the edges (a component across an
+    // edge would twist it). The largest offence over the ranks.
+    const double end =
+      is_static(parameters.time.integrator) ? 1. : parameters.time.end_time;
+    double across = 0.;
+    for (const double t : {0., 0.5 * end, end})
+      {
+        for (const auto &rotation : rotations)
+          rotation->set_time(t);
+        for (const PrescribedAngle &angle : prescribed_angles)
+          {
+            const Tensor<1, 3> theta = rotation_vector(angle);
+            const double       off =
+              (theta - (theta * angle.direction) * angle.direction).norm();
+            across =
+              std::max(across,
+                       std::isfinite(theta.norm()) ? off / std::max(theta.norm(), 1.)
+                                                   : HUGE_VAL);
+          }
+      }
+    across = Utilities::MPI::max(across, discretization.get_communicator());
+    if (across > 1e-9)
+      throw InputError(parameter_file,
+                       entry,
+                       std::isfinite(across)
+                         ? "a rotation has a component across its group's edges (up to " +
+                             std::to_string(across) +
+                             " rad), a twist a held edge cannot take: give it along the "
+                             "edges"
+                         : "a rotation is not finite at an edge of its group");
   }
 
 
@@ -323,6 +405,16 @@ namespace clothsim
   }
 
 
+  Tensor<1, 3>
+  BoundaryConditions::rotation_vector(const PrescribedAngle &angle) const
+  {
+    Tensor<1, 3> theta;
+    for (unsigned int c = 0; c < 3; ++c)
+      theta[c] = rotations[angle.rotation]->value(angle.midpoint, c);
+    return theta;
+  }
+
+
   void
   BoundaryConditions::apply_pinned_displacement(const double time, VectorType &u) const
   {
@@ -330,6 +422,12 @@ namespace clothsim
     for (const PinnedDof &pin : pinned)
       if (discretization.owned_dofs().is_element(pin.dof))
         u[pin.dof] = pinned_displacement.value(pin.reference, pin.component);
+    for (const auto &rotation : rotations)
+      rotation->set_time(time);
+    for (const PrescribedAngle &angle : prescribed_angles)
+      {
+        u[angle.dof] = rotation_vector(angle) * angle.direction;
+      }
     u.compress(VectorOperation::insert);
   }
 

@@ -3,7 +3,10 @@
 // The boundary conditions and initial state of a scene: pinned groups (points, lines or
 // surfaces of the mesh; any of x, y, z) with their prescribed displacement (an expression
 // of x, y, z, t; on line groups also 'r', the director angle about the edge), clamped
-// boundary lines (every component pinned and the edge's director angle held), and the
+// boundary lines (every component pinned and the edge's director angle held), prescribed
+// rotations of the groups whose director angles are held (a rotation vector θ(x, t): each
+// edge's angle is θ · t_e, t_e its unit direction; clamped edges keep their rest
+// directors as references, so the angle is the whole rotation), and the
 // initial displacement and velocity (expressions of x, y, z). Each group is also a
 // support whose reaction the output reports (supports()).
 // Pinned and clamped dofs, and the unused angle dofs of the discretization, become
@@ -19,6 +22,7 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -63,7 +67,8 @@ namespace clothsim
     void
     initial_state(VectorType &u, VectorType &v) const;
 
-    // Sets the pinned entries of `u` (owned) to the prescribed displacement at time t.
+    // Sets the pinned entries of `u` (owned) to the prescribed displacement at time t,
+    // and the angles of edges with a prescribed rotation to it.
     void
     apply_pinned_displacement(const double time, VectorType &u) const;
 
@@ -96,15 +101,39 @@ namespace clothsim
       Point<3>                reference;
     };
 
-    const mesh::Discretization       &discretization;
-    AffineConstraints<double>         constraint_set;
-    std::vector<PinnedDof>            pinned;
-    std::set<types::global_dof_index> pinned_dofs;
-    std::set<types::global_dof_index> clamped_angle_dofs;
-    std::vector<Support>              support_list;
-    mutable FunctionParser<3>         pinned_displacement;
-    FunctionParser<3>                 initial_displacement;
-    FunctionParser<3>                 initial_velocity;
+    // A held angle with a prescribed rotation (owned): its dof, its edge's unit direction
+    // t_e (as the angle turns about it) and reference midpoint, the rotation's index.
+    struct PrescribedAngle
+    {
+      types::global_dof_index dof;
+      Tensor<1, 3>            direction;
+      Point<3>                midpoint;
+      unsigned int            rotation;
+    };
+
+    // Resolves 'Prescribed rotations' on the supports (`holds_rotation`: per support,
+    // whether its rotation is held) and checks them at a few times (`times`).
+    void
+    resolve_prescribed_rotations(const Parameters        &parameters,
+                                 const std::string       &parameter_file,
+                                 const std::vector<bool> &holds_rotation);
+
+    // θ at the angle's edge midpoint, at the time its function was last set to.
+    Tensor<1, 3>
+    rotation_vector(const PrescribedAngle &angle) const;
+
+    const mesh::Discretization  &discretization;
+    AffineConstraints<double>    constraint_set;
+    std::vector<PrescribedAngle> prescribed_angles;
+    // θ(x, y, z, t) per 'Prescribed rotations' entry (evaluated at set times: pointers).
+    std::vector<std::unique_ptr<FunctionParser<3>>> rotations;
+    std::vector<PinnedDof>                          pinned;
+    std::set<types::global_dof_index>               pinned_dofs;
+    std::set<types::global_dof_index>               clamped_angle_dofs;
+    std::vector<Support>                            support_list;
+    mutable FunctionParser<3>                       pinned_displacement;
+    FunctionParser<3>                               initial_displacement;
+    FunctionParser<3>                               initial_velocity;
   };
 
   // Parses 'fx; fy; fz' (or one expression, as `function` has components; in x, y, z

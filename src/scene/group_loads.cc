@@ -65,6 +65,68 @@ namespace clothsim
           forces.add(dofs, values);
         }
     }
+
+
+    // The couple of 'Loads/Point moments' at every vertex of the point group: F_j =
+    // ω × r_j on the other vertices j of each triangle at p (r_j = X_j - X_p, counted per
+    // triangle), -F_j on p, with A ω = M for A = Σ (|r_j|² I - r_j r_jᵀ), so that
+    // Σ r_j × F_j = A ω = M. A sums over the ranks' triangles.
+    void
+    add_point_moment(const mesh::Discretization  &discretization,
+                     const GroupLoad             &load,
+                     const std::vector<Point<3>> &points,
+                     const double                 tolerance,
+                     const std::string           &parameter_file,
+                     VectorType                  &forces)
+    {
+      const auto &elements = discretization.elements();
+      for (const Point<3> &p : points)
+        {
+          Tensor<2, 3> A;
+          unsigned int triangles = 0;
+          for (const auto &element : elements)
+            for (unsigned int v = 0; v < 3; ++v)
+              if (element.reference[v].distance(p) < tolerance)
+                {
+                  ++triangles;
+                  for (const unsigned int w : {(v + 1) % 3, (v + 2) % 3})
+                    {
+                      const Tensor<1, 3> r = element.reference[w] - element.reference[v];
+                      A -= outer_product(r, r);
+                      for (unsigned int d = 0; d < 3; ++d)
+                        A[d][d] += r * r;
+                    }
+                }
+          const MPI_Comm communicator = discretization.get_communicator();
+          triangles                   = Utilities::MPI::sum(triangles, communicator);
+          A                           = Utilities::MPI::sum(A, communicator);
+          if (triangles == 0)
+            throw InputError(parameter_file,
+                             "Loads/Point moments",
+                             "the point group '" + load.name +
+                               "' has a point that is no mesh vertex");
+          const Tensor<1, 3> omega = invert(A) * load.value;
+          for (const auto &element : elements)
+            for (unsigned int v = 0; v < 3; ++v)
+              if (element.reference[v].distance(p) < tolerance)
+                for (const unsigned int w : {(v + 1) % 3, (v + 2) % 3})
+                  {
+                    const Tensor<1, 3> F =
+                      cross_product_3d(omega,
+                                       element.reference[w] - element.reference[v]);
+                    std::vector<types::global_dof_index> dofs;
+                    std::vector<double>                  values;
+                    for (unsigned int c = 0; c < 3; ++c)
+                      {
+                        dofs.push_back(element.dofs[3 * w + c]);
+                        values.push_back(F[c]);
+                        dofs.push_back(element.dofs[3 * v + c]);
+                        values.push_back(-F[c]);
+                      }
+                    forces.add(dofs, values);
+                  }
+        }
+    }
   } // namespace
 
 
@@ -72,7 +134,8 @@ namespace clothsim
   has_group_loads(const LoadParameters &loads)
   {
     return !loads.point_forces.empty() || !loads.line_forces.empty() ||
-           !loads.line_moments.empty() || !is_zero(loads.surface_forces);
+           !loads.line_moments.empty() || !loads.point_moments.empty() ||
+           !is_zero(loads.surface_forces);
   }
 
 
@@ -147,6 +210,16 @@ namespace clothsim
       }
     if (!is_zero(loads.surface_forces))
       add_surface_forces(discretization, loads.surface_forces, parameter_file, forces);
+    for (const GroupLoad &load : loads.point_moments)
+      {
+        const auto group = groups.point_groups.find(load.name);
+        if (group == groups.point_groups.end())
+          throw InputError(parameter_file,
+                           "Loads/Point moments",
+                           "the mesh has no point group named '" + load.name + "'");
+        add_point_moment(
+          discretization, load, group->second, tolerance, parameter_file, forces);
+      }
     forces.compress(VectorOperation::add);
 
     // Line moments: (m · t_e) ℓ_e on the director angle of every boundary edge of the

@@ -5,7 +5,8 @@
 // both ends of every boundary edge of its line group (exact for P1 elements under
 // uniform q); a surface force f(X) (N/m²) puts A (2 f_i + f_j + f_k) / 12 on vertex i of
 // every triangle (the consistent load of f interpolated linearly); a line moment acts on
-// the director angles of its group's edges.
+// the director angles of its group's edges; a point moment is a couple of forces on the
+// triangles around each vertex of its point group.
 
 #include "io/parameters.h"
 #include "mesh/discretization.h"

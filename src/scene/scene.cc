@@ -67,10 +67,10 @@ namespace clothsim
                              (parameters.time.integrator == Integrator::arc_length
                                 ? "arc length"
                                 : "linear static") +
-                             "' takes loads only: the pinned displacements must be "
-                             "zero (here up to " +
+                             "' takes loads only: the pinned displacements and "
+                             "prescribed rotations must be zero (here up to " +
                              std::to_string(pinned.linfty_norm()) +
-                             " m at the full load); use 'static'");
+                             " m or rad at the full load); use 'static'");
       }
     const mesh::Discretization &discretization = scene->model->get_discretization();
     scene->probes =
