@@ -14,6 +14,15 @@ namespace clothsim
 
   namespace
   {
+    // Whether `value` holds on every rank (collective).
+    bool
+    on_all_ranks(const bool value, const MPI_Comm communicator)
+    {
+      int local = value ? 1 : 0, all = 0;
+      MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, communicator);
+      return all == 1;
+    }
+
     // MUMPS' arrays are 1-based in its documentation: ICNTL(k) is icntl[k - 1].
     constexpr int
     at(const int k)
@@ -63,8 +72,9 @@ namespace clothsim
     instance->id.icntl[at(18)] = 3; // distributed by rows as the caller's
     instance->id.icntl[at(7)]  = ordering;
     instance->id.icntl[at(28)] = 1; // sequential analysis: ICNTL(7) chooses the ordering
-    instance->id.icntl[at(20)] = 0; // dense right-hand side on rank 0,
-    instance->id.icntl[at(21)] = 0; // solution on rank 0
+    instance->id.icntl[at(20)] =
+      10;                           // right-hand side distributed (by the caller's rows),
+    instance->id.icntl[at(21)] = 1; // solution distributed (as MUMPS' factors)
   }
 
 
@@ -160,31 +170,52 @@ namespace clothsim
           return false;
         analysed = true;
 
-        const int n_global = matrix.NumGlobalRows();
-        int       rank     = 0;
-        MPI_Comm_rank(communicator, &rank);
-        host_map    = std::make_unique<Epetra_Map>(n_global,
-                                                rank == 0 ? n_global : 0,
-                                                0,
-                                                matrix.Comm());
-        to_host     = std::make_unique<Epetra_Import>(*host_map, matrix.RowMap());
-        host_vector = std::make_unique<Epetra_Vector>(*host_map);
+        rhs_rows.resize(matrix.NumMyRows());
+        for (int row = 0; row < matrix.NumMyRows(); ++row)
+          rhs_rows[row] = matrix.RowMap().GID(row) + 1;
+        rhs_values.resize(rhs_rows.size());
       }
-    return call(2, "factorisation");
+    if (!call(2, "factorisation"))
+      return false;
+    // INFO(23): how many solution entries this rank receives.
+    const int n_solution = std::max(instance->id.info[at(23)], 1);
+    solution_rows.resize(n_solution);
+    solution_values.resize(n_solution);
+    return true;
   }
 
 
   bool
   MumpsFactorization::solve(const Epetra_Vector &b, Epetra_Vector &x)
   {
-    host_vector->Import(b, *to_host, Insert);
-    instance->id.rhs  = host_vector->Values();
-    instance->id.nrhs = 1;
-    instance->id.lrhs = instance->id.n;
+    std::copy(b.Values(), b.Values() + b.MyLength(), rhs_values.begin());
+    instance->id.nrhs     = 1;
+    instance->id.nloc_rhs = static_cast<MUMPS_INT>(rhs_rows.size());
+    instance->id.lrhs_loc = std::max<MUMPS_INT>(instance->id.nloc_rhs, 1);
+    instance->id.irhs_loc = rhs_rows.data();
+    instance->id.rhs_loc  = rhs_values.data();
+    instance->id.lsol_loc = static_cast<MUMPS_INT>(solution_values.size());
+    instance->id.isol_loc = solution_rows.data();
+    instance->id.sol_loc  = solution_values.data();
     if (!call(3, "solve"))
       return false;
-    x.Export(*host_vector, *to_host, Insert);
-    return true;
+    // This rank's solution entries: the first INFO(23) of ISOL_loc (1-based rows).
+    const int n_local = instance->id.info[at(23)];
+    bool      same    = from_solution != nullptr &&
+                static_cast<int>(mapped_rows.size()) == n_local &&
+                std::equal(mapped_rows.begin(), mapped_rows.end(), solution_rows.begin());
+    if (!on_all_ranks(same, communicator))
+      {
+        mapped_rows.assign(solution_rows.begin(), solution_rows.begin() + n_local);
+        std::vector<int> global(n_local);
+        for (int i = 0; i < n_local; ++i)
+          global[i] = mapped_rows[i] - 1;
+        solution_map =
+          std::make_unique<Epetra_Map>(-1, n_local, global.data(), 0, x.Map().Comm());
+        from_solution = std::make_unique<Epetra_Import>(x.Map(), *solution_map);
+      }
+    const Epetra_Vector solution(View, *solution_map, solution_values.data());
+    return x.Import(solution, *from_solution, Insert) == 0;
   }
 
 
