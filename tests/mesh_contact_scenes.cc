@@ -21,8 +21,16 @@
 //    ±3 rad/s about x with μ = 0.8 (params/contact/sheet-on-rotating-sphere.prm, first 1
 //    s): the sheet that falls onto it follows its top, by more than 5 cm either way (the
 //    moving obstacle's feasible start and the friction of pairs).
+// 6. The drape test on the lattice specimen (params/contact/cusick-drape-lattice.prm,
+//    meshes/cusick-lattice.geo at h = 1 cm, first 0.5 s): the specimen is an equilateral
+//    lattice (at least 85 % of its triangles have three edges of length h to 1e-9 h; its
+//    area is π R² within 0.5 %, its boundary vertices on the circle R = 15 cm to 1e-9 m);
+//    the seed lifts and lowers the overhang without moving it sideways, so the drape
+//    coefficient starts at 1 (within 1e-4, the projected area's sampling error); the
+//    specimen falls over the sharp rim (DC below 0.8 at 0.5 s) without a step halving.
 
 #include "contact_checks.h"
+#include "mesh/surface_mesh.h"
 
 #include <fstream>
 #include <iomanip>
@@ -149,6 +157,70 @@ namespace
     if (!result.files_read)
       return false;
     passed &= check_outside(pcout, name, root / name);
+    return passed;
+  }
+
+  bool
+  check_lattice_drape(ConditionalOStream &pcout)
+  {
+    const std::string specimen = scratch_mesh(root / "lattice", {"cusick-lattice.geo"});
+    GuardedRun        result;
+    bool              passed = run(pcout,
+                      "lattice drape",
+                      "params/contact/cusick-drape-lattice.prm",
+                      {"Mesh/Mesh file=" + specimen, "Time/End time=0.5"},
+                      result);
+    if (!passed)
+      return false;
+    passed &=
+      check_below(pcout, "lattice drape: step halvings", result.summary.retries, 0.5);
+
+    const double            h = 0.01, R = 0.15;
+    const mesh::SurfaceMesh surface     = mesh::read_surface_mesh(specimen);
+    unsigned int            equilateral = 0;
+    double                  area        = 0.;
+    for (const auto &[a, b, c] : surface.triangles)
+      {
+        const Point<3> &x = surface.vertices[a], &y = surface.vertices[b],
+                       &z = surface.vertices[c];
+        area += 0.5 * cross_product_3d(y - x, z - x).norm();
+        bool lattice = true;
+        for (const double length : {(y - x).norm(), (z - y).norm(), (x - z).norm()})
+          lattice = lattice && std::abs(length - h) < 1e-9 * h;
+        equilateral += lattice ? 1 : 0;
+      }
+    double off_circle = 0.;
+    for (const Point<3> &x : surface.vertices)
+      {
+        const double r = std::hypot(x[0], x[1]);
+        if (r > R - 0.5 * h)
+          off_circle = std::max(off_circle, std::abs(r - R));
+      }
+    passed &= check_above(pcout,
+                          "lattice drape: equilateral triangles of edge h (fraction)",
+                          static_cast<double>(equilateral) / surface.triangles.size(),
+                          0.85);
+    passed &= check_near(pcout,
+                         "lattice drape: specimen area / (pi R^2)",
+                         area / (numbers::PI * R * R),
+                         1.,
+                         5e-3);
+    passed &= check_below(pcout,
+                          "lattice drape: boundary vertices off the circle, m",
+                          off_circle,
+                          1e-9);
+
+    const Csv statistics = read_csv((root / "lattice drape" / "statistics.csv").string());
+    passed &= check_near(pcout,
+                         "lattice drape: DC of the seeded specimen at t = 0",
+                         statistics.number(0, "drape_coefficient"),
+                         1.,
+                         1e-4);
+    passed &=
+      check_below(pcout,
+                  "lattice drape: DC at 0.5 s",
+                  statistics.number(statistics.rows.size() - 1, "drape_coefficient"),
+                  0.8);
     return passed;
   }
 
@@ -301,5 +373,7 @@ main(int argc, char **argv)
   passed &= check_table(pcout, mesh);
   pcout << "5. a turning ball (mesh) drags the sheet" << std::endl;
   passed &= check_turning_ball(pcout, mesh);
+  pcout << "6. the drape test on the lattice specimen" << std::endl;
+  passed &= check_lattice_drape(pcout);
   return finish(pcout, passed);
 }
