@@ -6,6 +6,7 @@
 #include "io/parameters.h"
 #include "test_checks.h"
 
+#include <algorithm>
 #include <cmath>
 
 using namespace clothsim;
@@ -69,6 +70,42 @@ main(int argc, char **argv)
                     fabric.areal_density,
                   1e-12);
     }
+
+  // Denim (orthotropic): exactly the documented values, which follow from Wang et al.'s
+  // small-strain stretching row (C_uu, C_uv, C_vv, C_s) and zero-curvature bending
+  // samples as ARCSim reads them (io/fabric_presets.cc): c = 2 C, warp along v.
+  {
+    const MaterialParameters m = read({"Material/Preset=denim"});
+    check(pcout,
+          m.orthotropic && m.stretch_stiffness == 2027. &&
+            m.weft_stretch_stiffness == 410.5 && m.shear_stiffness == 53.39 &&
+            m.poisson_ratio == 0.04984 && m.areal_density == 0.324 && m.bending &&
+            m.bending_rigidity == 6.420e-5 && m.weft_bending_rigidity == 9.695e-5,
+          "denim: exactly the documented orthotropic values (2027, 410.5, 53.39 N/m, "
+          "nu_12 0.04984, 0.324 kg/m², 6.420e-5 and 9.695e-5 N·m)");
+    const double c_uu = 2 * 205.352005, c_uv = 2 * 10.234077, c_vv = 2 * 1013.88629,
+                 c_s      = 53.387184;
+    const double d        = 1. - c_uv * c_uv / (c_vv * c_uu);
+    const auto   relative = [](const double value, const double exact) {
+      return std::abs(value - exact) / exact;
+    };
+    check_below(pcout,
+                "denim: largest relative difference of k_1, k_2, g, nu_12, D_1, D_2 "
+                "from the data",
+                std::max({relative(m.stretch_stiffness, c_vv * d),
+                          relative(m.weft_stretch_stiffness, c_uu * d),
+                          relative(m.shear_stiffness, c_s),
+                          relative(m.poisson_ratio, c_uv / c_uu),
+                          relative(m.bending_rigidity, 64.196457e-6),
+                          relative(m.weft_bending_rigidity, 96.951576e-6)}),
+                5e-4);
+    const MaterialParameters along_y =
+      read({"Material/Preset=denim", "Material/Warp direction=0, 1, 0"});
+    check(pcout,
+          along_y.warp_direction[1] == 1. && along_y.warp_direction[0] == 0. &&
+            along_y.stretch_stiffness == 2027. && along_y.orthotropic,
+          "denim with its warp along y: the rest denim");
+  }
 
   // Overrides: one entry changes, the preset's others stay; "none" keeps the defaults.
   const MaterialParameters stiffer = read({"Material/Bending rigidity=2e-5"});

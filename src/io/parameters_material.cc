@@ -94,7 +94,7 @@ namespace clothsim
       "barrier, Newton's line search is capped so that no tilt crosses it.");
     prm.declare_entry(
       "Anisotropy",
-      "isotropic",
+      default_value("Anisotropy", "isotropic"),
       Patterns::Selection("isotropic|orthotropic"),
       "'isotropic': the same stiffness in every direction. 'orthotropic' (woven "
       "cloth: warp and weft stiff, bias soft; physics/sheet_stiffness.h): 'Stretch "
@@ -109,16 +109,16 @@ namespace clothsim
                       "be normal to any triangle. The weft is perpendicular to it in the "
                       "surface.");
     prm.declare_entry("Weft stretch stiffness",
-                      "100",
+                      default_value("Weft stretch stiffness", "100"),
                       Patterns::Double(1e-12, 1e15),
                       "Orthotropic: membrane stiffness E_2 h along the weft, N/m.");
     prm.declare_entry("Shear stiffness",
-                      "38.46",
+                      default_value("Shear stiffness", "38.46"),
                       Patterns::Double(1e-12, 1e15),
                       "Orthotropic: in-plane shear stiffness G_12 h, N/m (isotropic "
                       "value: E h / (2 (1 + nu)); woven cloth: far below it).");
     prm.declare_entry("Weft bending rigidity",
-                      "1e-5",
+                      default_value("Weft bending rigidity", "1e-5"),
                       Patterns::Double(0., 1e15),
                       "Orthotropic with 'Bending = rigidity': bending rigidity D_2 along "
                       "the weft, N·m (twist: Huber's (1 - nu) sqrt(D_1 D_2) / 2).");
