@@ -1,14 +1,15 @@
 #include "scene/boundary_conditions.h"
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/grid/grid_tools.h>
 
 #include "io/input_error.h"
 
 #include <boost/serialization/array.hpp>
 
+#include <array>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -36,6 +37,32 @@ namespace clothsim
     }
 
   } // namespace
+
+
+  double
+  point_matching_tolerance(const Triangulation<2, 3> &triangulation,
+                           const MPI_Comm             communicator)
+  {
+    // Lower and upper corners of the box, the lower negated so that one max finds both.
+    std::array<double, 6> box;
+    box.fill(-std::numeric_limits<double>::max());
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              box[d]     = std::max(box[d], -cell->vertex(v)[d]);
+              box[3 + d] = std::max(box[3 + d], cell->vertex(v)[d]);
+            }
+    std::array<double, 6> all;
+    Utilities::MPI::max(ArrayView<const double>(box.data(), box.size()),
+                        communicator,
+                        ArrayView<double>(all.data(), all.size()));
+    double diagonal_squared = 0.;
+    for (unsigned int d = 0; d < 3; ++d)
+      diagonal_squared += (all[3 + d] + all[d]) * (all[3 + d] + all[d]);
+    return 1e-8 * std::sqrt(diagonal_squared);
+  }
 
 
   void
@@ -148,10 +175,10 @@ namespace clothsim
 
     // Matching tolerance for point groups: far below any edge length.
     const DoFHandler<2, 3> &dof_handler = discretization.get_dof_handler();
-    const double            tolerance =
-      1e-8 * GridTools::diameter(dof_handler.get_triangulation().get_triangulation());
-    const auto        &vertex_component = discretization.local_dof_vertex_component();
-    const unsigned int dofs_per_cell    = discretization.get_fe().n_dofs_per_cell();
+    const double tolerance = point_matching_tolerance(dof_handler.get_triangulation(),
+                                                      discretization.get_communicator());
+    const auto  &vertex_component    = discretization.local_dof_vertex_component();
+    const unsigned int dofs_per_cell = discretization.get_fe().n_dofs_per_cell();
 
     std::map<types::global_dof_index, PinnedDof> found;
     std::vector<types::global_dof_index>         dof_indices(dofs_per_cell);

@@ -146,6 +146,14 @@ namespace clothsim
                         const std::string &parameter_file,
                         const std::string &entry);
 
+  // The distance below which a vertex matches a point of a group: 1e-8 times the
+  // diagonal of the mesh's bounding box (all ranks' cells; the same on every rank), far
+  // below any edge. O(cells): GridTools::diameter compares pairs of boundary vertices,
+  // 1.6 s at 103,041 vertices. Collective.
+  double
+  point_matching_tolerance(const Triangulation<2, 3> &triangulation,
+                           const MPI_Comm             communicator);
+
   // An expression that is inf or NaN at t = 0 would only surface as a failed first
   // step: evaluates `function` (at its time as set) at each (component, point) of
   // `samples` and throws an InputError naming `entry`, the component and a point where

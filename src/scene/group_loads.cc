@@ -1,7 +1,6 @@
 #include "scene/group_loads.h"
 
 #include <deal.II/base/mpi.h>
-#include <deal.II/grid/grid_tools.h>
 
 #include "io/input_error.h"
 #include "scene/boundary_conditions.h"
@@ -153,7 +152,7 @@ namespace clothsim
     const DoFHandler<2, 3> &dof_handler  = discretization.get_dof_handler();
     const IndexSet         &owned        = discretization.owned_dofs();
     const double            tolerance =
-      1e-8 * GridTools::diameter(dof_handler.get_triangulation().get_triangulation());
+      point_matching_tolerance(dof_handler.get_triangulation(), communicator);
 
     // Point forces: on every vertex of the point group (each vertex once).
     for (const GroupLoad &load : loads.point_forces)
