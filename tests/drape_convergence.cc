@@ -6,7 +6,7 @@
 // z = -15 mm cos 6θ (r - 9 cm)/6 cm, at rest at 2.5 s. Checked:
 // - every run finishes without a step halving and no vertex ever reaches the disc;
 // - DC rises monotonically under refinement by √2, its differences shrink, and the
-//   observed order log(d_1/d_2)/log √2 lies in [0.8, 2.5] (measured 1.71; DC∞ − C h^p
+//   observed order log(d_1/d_2)/log √2 lies in [0.5, 3] (measured 1.71; DC∞ − C h^p
 //   fitted to five levels down to h = 2.5 mm gives p = 1.25 ± 0.16, README "Contact with
 //   obstacles");
 // - Richardson's extrapolation from the two finer levels with the five levels' order
@@ -14,7 +14,9 @@
 //   order itself is not used for it: a mesh moved by 1e-6 h changes DC by 0.002 at one
 //   level (several nearby equilibria with six folds), which moves the three levels' order
 //   between 1.3 and 1.7 and their own Richardson limit between 0.700 and 0.685, but this
-//   extrapolation by less than 0.004.
+//   extrapolation by less than 0.004. The order's bounds leave room for 0.005 at the
+//   middle level (seeds and round-off move DC by that much) and still fail if the
+//   differences stop shrinking by at least 2^(1/4) per refinement.
 // About 130 s on one core.
 
 #include "contact_checks.h"
@@ -100,8 +102,8 @@ main(int argc, char **argv)
   if (d_1 > 0. && d_2 > 0.)
     {
       const double order = std::log(d_1 / d_2) / std::log(refinement);
-      check_above(pcout, "observed order of DC in h", order, 0.8);
-      check_below(pcout, "observed order of DC in h", order, 2.5);
+      check_above(pcout, "observed order of DC in h", order, 0.5);
+      check_below(pcout, "observed order of DC in h", order, 3.);
       const double limit = dc[2] + d_2 / (std::pow(refinement, 1.25) - 1.);
       check_near(pcout, "Richardson's limit of DC with order 1.25", limit, 0.707, 0.02);
     }
