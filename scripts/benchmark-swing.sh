@@ -21,6 +21,9 @@
 #                   ranks)
 #   speedup         (runs on several ranks) the wall time on one rank over this one, same N
 #                   and model (needs 1 in --ranks)
+#   it_speedup      (runs on several ranks) the same per Newton iteration of the steps
+#                   after the first, which holds one-time work (the direct solver's
+#                   sequential analysis: 21 s at N = 321) that a long run amortises
 #   status          ok, or FAILED with the time the run reached
 # A run that fails ends the benchmark: the rows measured so far (the failed run's from
 # what it wrote, its iteration counts from its accepted steps only, marked *) are
@@ -141,24 +144,28 @@ fi
 output=$(cd "$output" && pwd)
 
 # One row per run, tab-separated: n model ranks vertices steps halvings wall newton linear
-# status, where newton and linear are totals.
+# later_wall later_newton status, where newton and linear are totals and later_* the wall
+# time and Newton iterations of the accepted steps after the first (which holds one-time
+# work: the direct solver's analysis).
 rows=()
 
 # measure DIR: the row's fields from DIR/run.log and DIR/statistics.csv.
 measure() {
   local directory=$1 log="$1/run.log" statistics="$1/statistics.csv"
-  local vertices steps wall newton linear halvings done_line
+  local vertices steps wall newton linear halvings done_line later_wall later_newton
   vertices=$(sed -n 's/^  mesh .*: \([0-9]*\) vertices,.*/\1/p' "$log" | head -n 1)
   done_line=$(grep '^done: ' "$log" | tail -n 1)
   if [ -f "$statistics" ]; then
     # steps and wall time from the last row; iterations summed over the accepted steps.
-    read -r steps wall newton linear < <(awk -F, '
+    read -r steps wall newton linear later_wall later_newton < <(awk -F, '
       NR == 1 { for (c = 1; c <= NF; ++c) column[$c] = c; next }
       { steps = $column["step"]; wall = $column["wall_seconds"]
-        newton += $column["newton_iterations"]; linear += $column["linear_iterations"] }
-      END { print steps + 0, wall + 0, newton + 0, linear + 0 }' "$statistics")
+        newton += $column["newton_iterations"]; linear += $column["linear_iterations"]
+        if (steps == 1) { first_wall = wall; first_newton = newton } }
+      END { print steps + 0, wall + 0, newton + 0, linear + 0, wall - first_wall,
+                  newton - first_newton }' "$statistics")
   else
-    steps=0 wall=0 newton=0 linear=0
+    steps=0 wall=0 newton=0 linear=0 later_wall=0 later_newton=0
   fi
   if [ -n "$done_line" ]; then
     # The run's totals include the iterations of attempts that failed and were halved.
@@ -169,7 +176,7 @@ measure() {
     halvings=$(grep -c 'retrying with dt' "$log")
   fi
   printf '%s\t%s\t%s\t%s\t%s' "${vertices:-0}" "$steps" "$halvings" "$wall" "$newton"
-  printf '\t%s\n' "$linear"
+  printf '\t%s\t%s\t%s\n' "$linear" "$later_wall" "$later_newton"
 }
 
 print_table() {
@@ -178,16 +185,19 @@ print_table() {
     # value with the given printf format, or "-" where it is not defined.
     function show(defined, format, value) { return defined ? sprintf(format, value) : "-" }
     { n[NR] = $1; model[NR] = $2; ranks[NR] = $3; vertices[NR] = $4; steps[NR] = $5
-      halvings[NR] = $6; wall[NR] = $7; newton[NR] = $8; linear[NR] = $9; status[NR] = $10
+      halvings[NR] = $6; wall[NR] = $7; newton[NR] = $8; linear[NR] = $9; status[NR] = $12
       cost[NR] = ($4 > 0 && $5 > 0) ? 1e6 * $7 / ($4 * $5) : 0
+      iteration[NR] = $11 > 0 ? $10 / $11 : 0
+      if (iteration[NR] > 0) per_iteration[$1, $2, $3] = iteration[NR]
       if (cost[NR] > 0) {
         of[$1, $2, $3] = cost[NR]
         if (!(($2, $3) in first)) first[$2, $3] = cost[NR]
       } }
     END {
-      format = "%5s  %-11s %5s %8s %6s %8s %9s %11s %11s %10s %6s %6s %7s  %s\n"
+      format = "%5s  %-11s %5s %8s %6s %8s %9s %11s %11s %10s %6s %6s %7s %9s  %s\n"
       printf format, "N", "model", "ranks", "vertices", "steps", "halvings", "wall_s",
-        "us/vtx-step", "newton/step", "lin/newton", "fem/ms", "vs_N0", "speedup", "status"
+        "us/vtx-step", "newton/step", "lin/newton", "fem/ms", "vs_N0", "speedup",
+        "it_speedup", "status"
       for (r = 1; r <= NR; ++r) {
         mark = status[r] == "ok" ? "" : "*"
         ms = of[n[r], "mass-spring", ranks[r]]
@@ -201,12 +211,15 @@ print_table() {
           show(cost[r] > 0, "%.2f",
                cost[r] / (first[model[r], ranks[r]] ? first[model[r], ranks[r]] : 1)),
           show(ranks[r] > 1 && cost[r] > 0 && one > 0, "%.2f", one / (cost[r] ? cost[r] : 1)),
+          show(ranks[r] > 1 && iteration[r] > 0 && per_iteration[n[r], model[r], 1] > 0,
+               "%.2f", per_iteration[n[r], model[r], 1] / (iteration[r] ? iteration[r] : 1)),
           status[r]
       }
       printf "(us/vtx-step: wall time of the time loop per vertex and step; fem/ms: the fem\n"
       printf "cost per vertex-step over the mass-spring one on the same mesh and ranks; vs_N0:\n"
       printf "over the same model'"'"'s at N = %s; speedup: one rank'"'"'s wall time over this\n", smallest
-      printf "one'"'"'s; *: a failed run'"'"'s accepted steps only)\n"
+      printf "one'"'"'s; it_speedup: the same per Newton iteration after the first step, which\n"
+      printf "holds the direct solver'"'"'s analysis; *: a failed run'"'"'s accepted steps only)\n"
     }'
 }
 
