@@ -165,8 +165,9 @@ namespace
   }
 
   // The first 0.5 s of a drape scene on the lattice specimen (h = 1 cm, generated into
-  // root / `name` from meshes/cusick-lattice.geo, its path in `specimen`): run() and no
-  // step halving. Returns whether those held and, if the run finished, its statistics.
+  // root / "`name` mesh" from meshes/cusick-lattice.geo, its path in `specimen`; the
+  // run's output in root / `name`): run() and no step halving. Returns whether those held
+  // and, if the run finished, its statistics.
   bool
   run_lattice_drape(ConditionalOStream &pcout,
                     const std::string  &name,
