@@ -250,6 +250,7 @@ namespace clothsim
     bool         mixed_stress_tangent; // membrane stress linearised (physics/membrane.h)
     double       displacement_tolerance;    // m
     double       truncation_error_fraction; // of the step's local error estimate
+    std::string  truncation_error_norm;     // "largest" or "kinetic"
     bool         print_iterations;
 
     static void

@@ -86,6 +86,15 @@ namespace clothsim
       "changes the answer by less than the time discretisation does. 0: off; "
       "0.01 to 0.1 is customary (Hairer & Wanner, Solving ODEs II, IV.8).");
     prm.declare_entry(
+      "Truncation error norm",
+      "largest",
+      Patterns::Selection("largest|kinetic"),
+      "The norm in which 'Truncation error fraction' compares the Newton update "
+      "with the truncation error estimate: 'largest', the largest vertex "
+      "coordinate of each; 'kinetic', the root mean square of each weighted by "
+      "the lumped masses (the norm of the step's kinetic energy; Hairer & "
+      "Wanner's error norms are root mean squares).");
+    prm.declare_entry(
       "Print iterations",
       "false",
       Patterns::Bool(),
@@ -133,6 +142,7 @@ namespace clothsim
     line_search               = prm.get("Line search");
     displacement_tolerance    = prm.get_double("Displacement tolerance");
     truncation_error_fraction = prm.get_double("Truncation error fraction");
+    truncation_error_norm     = prm.get("Truncation error norm");
     print_iterations          = prm.get_bool("Print iterations");
     tangent                   = prm.get("Tangent");
     mixed_stress_tangent      = prm.get_bool("Mixed stress tangent");

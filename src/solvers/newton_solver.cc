@@ -300,8 +300,8 @@ namespace clothsim
 
     // Converged when a full Newton step (no line-search cut) moved no dof by more than
     // the tolerance (m): the next correction is then far smaller (quadratic convergence)
-    // or at least smaller (linear). A cut step proves nothing, so it never counts. The
-    // tolerance is the larger of the fixed one and the problem's at the new iterate.
+    // or at least smaller (linear). A cut step proves nothing, so it never counts. Or
+    // when the problem's own test of the step at the new iterate passes (update_ratio).
     class SmallFullStep : public NOX::StatusTest::Generic
     {
     public:
@@ -329,8 +329,8 @@ namespace clothsim
         else
           {
             copy(epetra(solver.getSolutionGroup().getX()), context.iterate);
-            last_tolerance = context.problem.update_tolerance(context.iterate);
-            if (size < last_tolerance)
+            last_ratio = context.problem.update_ratio(context.update, context.iterate);
+            if (last_ratio < 1.)
               status = NOX::StatusTest::Converged;
           }
         return status;
@@ -345,13 +345,16 @@ namespace clothsim
       std::ostream &
       print(std::ostream &stream, int indent = 0) const override
       {
-        return stream << std::string(indent, ' ') << status << "full Newton step below "
-                      << std::max(tolerance, last_tolerance) << " m\n";
+        stream << std::string(indent, ' ') << status << "full Newton step below "
+               << tolerance << " m";
+        if (std::isfinite(last_ratio))
+          stream << " or at " << last_ratio << " of the problem's tolerance";
+        return stream << '\n';
       }
 
     private:
       const double                tolerance;
-      double                      last_tolerance = 0.;
+      double                      last_ratio = 0.;
       Context                    &context;
       NOX::StatusTest::StatusType status = NOX::StatusTest::Unevaluated;
     };

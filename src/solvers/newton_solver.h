@@ -19,6 +19,7 @@
 #include "io/parameters.h"
 #include "solvers/linear_solver.h"
 
+#include <limits>
 #include <string>
 
 namespace clothsim
@@ -62,13 +63,15 @@ namespace clothsim
       return update.linfty_norm();
     }
 
-    // A tolerance for that test which depends on the iterate u (m; 0: none). The larger
-    // of it and the fixed 'Displacement tolerance' applies. A time step returns a
-    // fraction of its estimated truncation error at u.
+    // A second test of a full update, which depends on the iterate u: the update's size
+    // over what the problem tolerates at u, in the problem's own norm (converged below
+    // 1; infinite: no such test). A time step compares it with a fraction of its
+    // estimated truncation error at u.
     virtual double
-    update_tolerance(const TrilinosWrappers::MPI::Vector & /*u*/) const
+    update_ratio(const TrilinosWrappers::MPI::Vector & /*update*/,
+                 const TrilinosWrappers::MPI::Vector & /*u*/) const
     {
-      return 0.;
+      return std::numeric_limits<double>::infinity();
     }
   };
 

@@ -21,6 +21,7 @@
 #include "time/model_interface.h"
 
 #include <functional>
+#include <limits>
 
 namespace clothsim
 {
@@ -61,17 +62,19 @@ namespace clothsim
     double
     update_size(const VectorType &update) const override;
 
-    // Newton's step test tolerates updates up to this function of the iterate (m).
+    // Newton's second step test: ratio(update, u), the update over what the step
+    // tolerates at the iterate u.
     void
-    set_update_tolerance(std::function<double(const VectorType &)> tolerance)
+    set_update_ratio(std::function<double(const VectorType &, const VectorType &)> ratio)
     {
-      iterate_tolerance = std::move(tolerance);
+      iterate_ratio = std::move(ratio);
     }
 
     double
-    update_tolerance(const VectorType &u) const override
+    update_ratio(const VectorType &update, const VectorType &u) const override
     {
-      return iterate_tolerance ? iterate_tolerance(u) : 0.;
+      return iterate_ratio ? iterate_ratio(update, u)
+                           : std::numeric_limits<double>::infinity();
     }
 
   private:
@@ -84,11 +87,11 @@ namespace clothsim
     void
     set_path_point(const VectorType &x, const double c);
 
-    std::function<double(const VectorType &)> iterate_tolerance;
-    const ModelInterface                     &model;
-    StepTerms                                 terms;
-    TimerOutput                              &timer;
-    VectorType                                ghosted, ghosted_direction;
+    std::function<double(const VectorType &, const VectorType &)> iterate_ratio;
+    const ModelInterface                                         &model;
+    StepTerms                                                     terms;
+    TimerOutput                                                  &timer;
+    VectorType        ghosted, ghosted_direction;
     const VectorType *path_start = nullptr; // q_n (owned) of the AVF step, else null
     // Mixed-stress tangent: per evaluation point (the AVF's two nodes, else one) the
     // point of the last tangent and of the one before (owned; empty: off).

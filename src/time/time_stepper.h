@@ -108,10 +108,17 @@ namespace clothsim
     // κ |u₊ - u - dt v - dt²/2 a| with κ from the step ratio (at constant steps 1/6 for
     // the midpoint rule, error dt³/12 u⁽³⁾, and 8/7 for BDF2, error 2/9 dt³ u⁽³⁾).
     // `u` is the end state, or with `u_is_midpoint` the midpoint rule's unknown.
+    // `kinetic`: in the kinetic norm instead of the largest component.
     std::pair<double, unsigned int>
     error_estimate(const double      dt,
                    const VectorType &u,
-                   const bool        u_is_midpoint = false) const;
+                   const bool        u_is_midpoint = false,
+                   const bool        kinetic       = false) const;
+
+    // The kinetic norm sqrt(Σ m_i x_i² / Σ m_i) over the displacement dofs (m): the root
+    // mean square weighted by the lumped masses (`masses`, set before use).
+    double
+    kinetic_norm(const VectorType &x) const;
 
     // The local error a step of size dt may make (m): 'Error tolerance' + 'Relative
     // error tolerance' x the largest displacement, or with an accuracy target T_a the
@@ -194,8 +201,10 @@ namespace clothsim
     double       first_step     = 0.; // s: 'Time step' (static mode: 1/'Load steps')
     double       reference_size = 0.; // m: ModelInterface::reference_size()
 
-    VectorType u_n, v_n, u_new, v_new; // owned
-    VectorType centre;                 // owned: ũ, the step's damping centre
+    VectorType         u_n, v_n, u_new, v_new; // owned
+    VectorType         masses;                 // owned: lumped, for the kinetic norm
+    mutable VectorType difference;             // owned: scratch of error_estimate
+    VectorType         centre;                 // owned: ũ, the step's damping centre
     // BDF2: the state before u_n and the step that led from it to u_n (0: none yet).
     VectorType u_nm1, v_nm1; // owned
     double     previous_step = 0.;
