@@ -298,9 +298,8 @@ namespace clothsim
       Context &context;
     };
 
-    // Converged when a full Newton step (no line-search cut) moved no dof by more than
-    // the tolerance (m): the next correction is then far smaller (quadratic convergence)
-    // or at least smaller (linear). A cut step proves nothing, so it never counts. Or
+    // Converged when a full Newton step (no line-search cut: a cut proves nothing) moved
+    // no dof by more than the tolerance (m), the next correction then being smaller; or
     // when the problem's own test of the step at the new iterate passes (update_ratio).
     class SmallFullStep : public NOX::StatusTest::Generic
     {
@@ -345,11 +344,9 @@ namespace clothsim
       std::ostream &
       print(std::ostream &stream, int indent = 0) const override
       {
-        stream << std::string(indent, ' ') << status << "full Newton step below "
-               << tolerance << " m";
-        if (std::isfinite(last_ratio))
-          stream << " or at " << last_ratio << " of the problem's tolerance";
-        return stream << '\n';
+        return stream << std::string(indent, ' ') << status << "full Newton step below "
+                      << tolerance << " m, or at " << last_ratio
+                      << " (below 1) of the problem's own test\n";
       }
 
     private:
@@ -399,7 +396,6 @@ namespace clothsim
     private:
       NewtonSolver::TangentState &tangent;
     };
-
   } // namespace
 
 
