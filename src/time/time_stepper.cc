@@ -172,24 +172,17 @@ namespace clothsim
     const double fraction = parameters.nonlinear_solver.truncation_error_fraction;
     if (dynamic && fraction > 0.)
       {
-        if (parameters.nonlinear_solver.truncation_error_norm == "kinetic")
-          {
-            if (masses.size() == 0)
-              model.lumped_masses(masses);
-            problem.set_update_ratio(
-              [this, dt, fraction, midpoint](const VectorType &update,
-                                             const VectorType &u) {
-                return kinetic_norm(update) /
-                       (fraction * error_estimate(dt, u, midpoint, true).first);
-              });
-          }
-        else
-          problem.set_update_ratio(
-            [this, dt, fraction, midpoint, &problem](const VectorType &update,
-                                                     const VectorType &u) {
-              return problem.update_size(update) /
-                     (fraction * error_estimate(dt, u, midpoint).first);
-            });
+        const bool kinetic =
+          parameters.nonlinear_solver.truncation_error_norm == "kinetic";
+        if (kinetic && masses.size() == 0)
+          model.lumped_masses(masses);
+        problem.set_update_ratio(
+          [this, dt, fraction, midpoint, kinetic, &problem](const VectorType &update,
+                                                            const VectorType &u) {
+            const double size =
+              kinetic ? kinetic_norm(update) : problem.update_size(update);
+            return size / (fraction * error_estimate(dt, u, midpoint, kinetic).first);
+          });
       }
     attempt.newton = newton.solve(problem, u_new, newton_floor);
     if (!attempt.newton.converged)
