@@ -4,7 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-# libopenblas0-serial: an optimised BLAS for MUMPS' dense kernels (Debian's alternatives
+# libmumps-dev: MUMPS' double- and single-precision libraries (solvers/mumps_factorization;
+# Trilinos depends on it too). libopenblas0-serial: an optimised BLAS for MUMPS' dense kernels (Debian's alternatives
 # pick it over the reference BLAS; factorisations twice as fast).
 # paraview python3-paraview xvfb xauth: ParaView's pvbatch/pvpython for scripts/render.py
 # and for the tests that read VTK files back (Debian's ParaView renders through X only:
@@ -12,7 +13,7 @@ cd "$(dirname "$0")/.."
 # of --compare, --convergence and --sweep. Not libvtk9-dev: it depends on python3-vtk9,
 # which conflicts with python3-paraview (installing one removes the other).
 packages=(cmake g++ make libdeal.ii-dev trilinos-all-dev libopenmpi-dev openmpi-bin gmsh
-          libgmsh-dev zlib1g-dev libopenblas0-serial paraview python3-paraview xvfb xauth
+          libgmsh-dev zlib1g-dev libmumps-dev libopenblas0-serial paraview python3-paraview xvfb xauth
           ffmpeg gnuplot-nox)
 missing=()
 for p in "${packages[@]}"; do

@@ -5,6 +5,9 @@
 // inertia (negative pivots = negative eigenvalues), a refactorisation with new values on
 // the same sparsity, the definite factorisation (SYM = 1) telling an indefinite matrix by
 // failing or by negative pivots, and a clear failure on a singular matrix.
+// Single-precision factors: their plain solve is accurate to single precision only (so
+// they are single), refinement in double brings it to the tolerance asked, and a matrix
+// too ill-conditioned for them fails with a message instead of a wrong answer.
 
 #include <deal.II/base/mpi.h>
 
@@ -72,16 +75,19 @@ namespace
     return count;
   }
 
-  // Relative error of the solution of T x = T x* for x*_i = sin(i + 1).
+  // Relative error of the solution of T x = T x* for x*_i = sin(i + 1); refined against
+  // T to `tolerance` if given (single-precision factors).
   double
-  solution_error(MumpsFactorization &mumps, const Epetra_CrsMatrix &matrix)
+  solution_error(MumpsFactorization     &mumps,
+                 const Epetra_CrsMatrix &matrix,
+                 const double            tolerance = -1.)
   {
     const Epetra_Map &map = matrix.RowMap();
     Epetra_Vector     exact(map), rhs(map), x(map);
     for (int local = 0; local < map.NumMyElements(); ++local)
       exact[local] = std::sin(map.GID(local) + 1.);
     matrix.Multiply(false, exact, rhs);
-    if (!mumps.solve(rhs, x))
+    if (!mumps.solve(rhs, x, tolerance > 0. ? &matrix : nullptr, tolerance))
       return 1e300;
     x.Update(-1., exact, 1.);
     double error = 0., norm = 0.;
@@ -150,6 +156,53 @@ main(int argc, char **argv)
     const bool         factorized = mumps.factorize(matrix);
     check(!factorized && mumps.failure().find("singular") != std::string::npos,
           "singular T fails: " + mumps.failure(),
+          rank);
+  }
+  {
+    // Single precision (ε = 6e-8): T with condition number 9 solves to about 1e-7 without
+    // refinement; refined against T to 1e-12, to round-off in double.
+    using Precision               = MumpsFactorization::Precision;
+    const Epetra_CrsMatrix matrix = toeplitz(map, 2.5, -1.);
+    MumpsFactorization     mumps(MPI_COMM_WORLD,
+                             MumpsFactorization::Symmetry::positive_definite,
+                             5,
+                             Precision::single_refined);
+    check(mumps.factorize(matrix), "single-precision SPD T factorises", rank);
+    const double plain = solution_error(mumps, matrix);
+    check(plain > 1e-12 && plain < 1e-5,
+          "single precision, not refined: relative error " + sci(plain) +
+            " (single, not double)",
+          rank);
+    const double refined = solution_error(mumps, matrix, 1e-12);
+    check(refined < 1e-11 && mumps.refinements() >= 1 && mumps.refinements() <= 3,
+          "single precision refined to 1e-12: relative error " + sci(refined) + " in " +
+            std::to_string(mumps.refinements()) + " refinement steps",
+          rank);
+
+    const Epetra_CrsMatrix indefinite = toeplitz(map, 0.3, 1.);
+    MumpsFactorization     pivoting(MPI_COMM_WORLD,
+                                MumpsFactorization::Symmetry::indefinite,
+                                5,
+                                Precision::single_refined);
+    check(pivoting.factorize(indefinite),
+          "single-precision indefinite T factorises",
+          rank);
+    const double indefinite_error = solution_error(pivoting, indefinite, 1e-12);
+    check(indefinite_error < 1e-10 &&
+            pivoting.negative_pivots() == negative_eigenvalues(n, 0.3, 1.),
+          "single precision, indefinite, refined: relative error " +
+            sci(indefinite_error) + ", " + std::to_string(pivoting.negative_pivots()) +
+            " negative pivots",
+          rank);
+
+    // A tolerance below double round-off (1e-20): the refinement stalls, and after its
+    // 10 steps the solve fails and says what to do instead of returning as solved.
+    const double unreachable = solution_error(mumps, matrix, 1e-20);
+    check(unreachable > 1e299 &&
+            mumps.failure().find("Factor precision") != std::string::npos &&
+            mumps.refinements() == 10,
+          "single precision refined to 1e-20 fails after " +
+            std::to_string(mumps.refinements()) + " steps: " + mumps.failure(),
           rank);
   }
   return failures == 0 ? 0 : 1;

@@ -281,6 +281,14 @@ namespace clothsim
                        "Nonlinear solver/Method",
                        "static mode needs a converging method (a single linearised "
                        "step does not find the equilibrium)");
+    if (parameters.linear_solver.factor_precision == "single" &&
+        (parameters.linear_solver.method != "direct" ||
+         parameters.linear_solver.direct_solver != "mumps"))
+      throw InputError(file,
+                       "Linear solver/Factor precision",
+                       "single-precision factors are MUMPS': set 'Linear solver/Method "
+                       "= direct' and 'Direct solver = mumps', or 'Factor precision = "
+                       "double'");
     if (parameters.nonlinear_solver.method == NewtonMethod::inexact &&
         parameters.linear_solver.method == "direct")
       throw InputError(file,

@@ -261,9 +261,10 @@ namespace clothsim
 
   struct LinearSolverParameters
   {
-    std::string  method;         // "cg", "gmres", "direct"
-    std::string  direct_solver;  // "klu", "mumps"
-    std::string  preconditioner; // "amg", "jacobi"
+    std::string  method;           // "cg", "gmres", "direct"
+    std::string  direct_solver;    // "klu", "mumps"
+    std::string  factor_precision; // "double", "single" (MUMPS' factors)
+    std::string  preconditioner;   // "amg", "jacobi"
     double       relative_tolerance;
     unsigned int max_iterations;
     unsigned int amg_smoother_sweeps;

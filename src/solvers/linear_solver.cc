@@ -61,8 +61,13 @@ namespace clothsim
             // (SYM = 2) for the rest of the run; MUMPS' pivot count is global, so every
             // rank switches alike.
             const auto make = [&](const MumpsFactorization::Symmetry symmetry) {
-              mumps = std::make_unique<MumpsFactorization>(matrix.get_mpi_communicator(),
-                                                           symmetry);
+              mumps = std::make_unique<MumpsFactorization>(
+                matrix.get_mpi_communicator(),
+                symmetry,
+                5,
+                parameters.factor_precision == "single"
+                  ? MumpsFactorization::Precision::single_refined
+                  : MumpsFactorization::Precision::double_precision);
             };
             if (!mumps)
               make(definite ? MumpsFactorization::Symmetry::positive_definite
@@ -192,8 +197,12 @@ namespace clothsim
               return false; // last_failure says why
             if (mumps)
               {
-                const bool solved =
-                  mumps->solve(*b.trilinos_vector()(0), *x.trilinos_vector()(0));
+                const bool solved = mumps->solve(*b.trilinos_vector()(0),
+                                                 *x.trilinos_vector()(0),
+                                                 &matrix.trilinos_matrix(),
+                                                 relative_tolerance.value_or(
+                                                   parameters.relative_tolerance));
+                iterations += mumps->refinements();
                 if (!solved)
                   last_failure = mumps->failure();
                 return solved;
