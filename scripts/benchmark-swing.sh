@@ -15,6 +15,9 @@
 #   newton/step     Newton iterations per step, failed attempts included
 #   lin/newton      linear iterations per Newton iteration
 #   ranks           MPI ranks of the run (mpirun -np, for more than one)
+#   steady_us       us/vtx-step over the steps after the first, whose wall time holds the
+#                   one-time work (the direct solver's sequential analysis: 21 s at N = 321)
+#   steady_vs_N0    steady_us over the same model's at the smallest N (same ranks)
 #   fem/ms          (fem rows) the fem cost per vertex-step over the mass-spring one
 #                   (same N and ranks)
 #   vs_N0           the cost per vertex-step over the same model's at the smallest N (same
@@ -187,6 +190,8 @@ print_table() {
     { n[NR] = $1; model[NR] = $2; ranks[NR] = $3; vertices[NR] = $4; steps[NR] = $5
       halvings[NR] = $6; wall[NR] = $7; newton[NR] = $8; linear[NR] = $9; status[NR] = $12
       cost[NR] = ($4 > 0 && $5 > 0) ? 1e6 * $7 / ($4 * $5) : 0
+      steady[NR] = ($4 > 0 && $5 > 1) ? 1e6 * $10 / ($4 * ($5 - 1)) : 0
+      if (steady[NR] > 0 && !(($2, $3) in steady_first)) steady_first[$2, $3] = steady[NR]
       iteration[NR] = $11 > 0 ? $10 / $11 : 0
       if (iteration[NR] > 0) per_iteration[$1, $2, $3] = iteration[NR]
       if (cost[NR] > 0) {
@@ -194,10 +199,10 @@ print_table() {
         if (!(($2, $3) in first)) first[$2, $3] = cost[NR]
       } }
     END {
-      format = "%5s  %-11s %5s %8s %6s %8s %9s %11s %11s %10s %6s %6s %7s %9s  %s\n"
+      format = "%5s  %-11s %5s %8s %6s %8s %9s %11s %11s %10s %6s %6s %9s %12s %7s %9s  %s\n"
       printf format, "N", "model", "ranks", "vertices", "steps", "halvings", "wall_s",
-        "us/vtx-step", "newton/step", "lin/newton", "fem/ms", "vs_N0", "speedup",
-        "it_speedup", "status"
+        "us/vtx-step", "newton/step", "lin/newton", "fem/ms", "vs_N0", "steady_us",
+        "steady_vs_N0", "speedup", "it_speedup", "status"
       for (r = 1; r <= NR; ++r) {
         mark = status[r] == "ok" ? "" : "*"
         ms = of[n[r], "mass-spring", ranks[r]]
@@ -210,6 +215,9 @@ print_table() {
           show(model[r] == "fem" && cost[r] > 0 && ms > 0, "%.2f", cost[r] / (ms ? ms : 1)),
           show(cost[r] > 0, "%.2f",
                cost[r] / (first[model[r], ranks[r]] ? first[model[r], ranks[r]] : 1)),
+          show(steady[r] > 0, "%.1f", steady[r]),
+          show(steady[r] > 0 && steady_first[model[r], ranks[r]] > 0, "%.2f",
+               steady[r] / (steady_first[model[r], ranks[r]] ? steady_first[model[r], ranks[r]] : 1)),
           show(ranks[r] > 1 && cost[r] > 0 && one > 0, "%.2f", one / (cost[r] ? cost[r] : 1)),
           show(ranks[r] > 1 && iteration[r] > 0 && per_iteration[n[r], model[r], 1] > 0,
                "%.2f", per_iteration[n[r], model[r], 1] / (iteration[r] ? iteration[r] : 1)),
@@ -217,7 +225,8 @@ print_table() {
       }
       printf "(us/vtx-step: wall time of the time loop per vertex and step; fem/ms: the fem\n"
       printf "cost per vertex-step over the mass-spring one on the same mesh and ranks; vs_N0:\n"
-      printf "over the same model'"'"'s at N = %s; speedup: one rank'"'"'s wall time over this\n", smallest
+      printf "over the same model'"'"'s at N = %s; steady_*: the same over the steps after the\n", smallest
+      printf "first, whose wall time holds one-time work; speedup: one rank'"'"'s wall time over this\n"
       printf "one'"'"'s; it_speedup: the same per Newton iteration after the first step, which\n"
       printf "holds the direct solver'"'"'s analysis; *: a failed run'"'"'s accepted steps only)\n"
     }'
