@@ -64,7 +64,7 @@ namespace clothsim
               mumps = std::make_unique<MumpsFactorization>(
                 matrix.get_mpi_communicator(),
                 symmetry,
-                5,
+                MumpsFactorization::default_ordering,
                 parameters.factor_precision == "single"
                   ? MumpsFactorization::Precision::single_refined
                   : MumpsFactorization::Precision::double_precision);

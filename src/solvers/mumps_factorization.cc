@@ -283,16 +283,16 @@ namespace clothsim
   bool
   MumpsFactorization::solve_once(const Epetra_Vector &b, Epetra_Vector &x)
   {
-    std::copy(b.Values(), b.Values() + b.MyLength(), rhs_values.begin());
     if (instance->single)
       {
-        instance->rhs.assign(rhs_values.begin(), rhs_values.end());
+        instance->rhs.assign(b.Values(), b.Values() + b.MyLength());
         instance->solution.resize(solution_values.size());
         instance->s.rhs_loc = instance->rhs.data();
         instance->s.sol_loc = instance->solution.data();
       }
     else
       {
+        std::copy(b.Values(), b.Values() + b.MyLength(), rhs_values.begin());
         instance->d.rhs_loc = rhs_values.data();
         instance->d.sol_loc = solution_values.data();
       }

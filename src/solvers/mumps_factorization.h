@@ -46,9 +46,12 @@ namespace clothsim
       single_refined
     };
 
+    // ICNTL(7) = 5 asks for METIS, which Debian's MUMPS replaces by PORD (see above).
+    static constexpr int default_ordering = 5;
+
     MumpsFactorization(MPI_Comm  communicator,
                        Symmetry  symmetry,
-                       int       ordering  = 5,
+                       int       ordering  = default_ordering,
                        Precision precision = Precision::double_precision);
     ~MumpsFactorization();
     MumpsFactorization(const MumpsFactorization &) = delete;
