@@ -8,6 +8,8 @@
 // Single-precision factors: their plain solve is accurate to single precision only (so
 // they are single), refinement in double brings it to the tolerance asked, and a matrix
 // too ill-conditioned for them fails with a message instead of a wrong answer.
+// Rows holding only their diagonal are solved outside MUMPS: the solution and the inertia
+// are the same, and the definite factorisation refuses a negative one.
 
 #include <deal.II/base/mpi.h>
 
@@ -60,6 +62,42 @@ namespace
               value = 0.;
             matrix.InsertGlobalValues(i, 1, &value, &j);
           }
+      }
+    matrix.FillComplete();
+    return matrix;
+  }
+
+  // Every third row (i % 3 == 2) decoupled, only a diagonal: 4, or -2 where i % 6 == 5
+  // if `negative`; the other rows a tridiagonal T = a I + b (shift up + shift down) in
+  // their order (their own chain, skipping the decoupled rows). MUMPS gets only the chain
+  // (solvers/mumps_factorization.h); with `all_decoupled` the matrix is only the
+  // diagonal.
+  Epetra_CrsMatrix
+  interleaved(const Epetra_Map &map,
+              const double      a,
+              const double      b,
+              const bool        negative,
+              const bool        all_decoupled = false)
+  {
+    Epetra_CrsMatrix matrix(Copy, map, 3);
+    const int        n         = map.NumGlobalElements();
+    const auto       decoupled = [&](const int i) { return all_decoupled || i % 3 == 2; };
+    for (int local = 0; local < map.NumMyElements(); ++local)
+      {
+        const int i = map.GID(local);
+        if (decoupled(i))
+          {
+            const double value = negative && i % 6 == 5 ? -2. : 4.;
+            matrix.InsertGlobalValues(i, 1, &value, &i);
+            continue;
+          }
+        matrix.InsertGlobalValues(i, 1, &a, &i);
+        const int previous = decoupled(i - 1) ? i - 2 : i - 1;
+        const int next     = decoupled(i + 1) ? i + 2 : i + 1;
+        if (previous >= 0)
+          matrix.InsertGlobalValues(i, 1, &b, &previous);
+        if (next < n)
+          matrix.InsertGlobalValues(i, 1, &b, &next);
       }
     matrix.FillComplete();
     return matrix;
@@ -203,6 +241,61 @@ main(int argc, char **argv)
             mumps.refinements() == 10,
           "single precision refined to 1e-20 fails after " +
             std::to_string(mumps.refinements()) + " steps: " + mumps.failure(),
+          rank);
+  }
+  {
+    // Decoupled rows are solved outside MUMPS: the solution, and the inertia counting
+    // their negative diagonals (the chain's 667 rows and 166 of the 333 decoupled).
+    const int              chain = n - n / 3, negative_diagonals = (n + 1) / 6;
+    const Epetra_CrsMatrix matrix = interleaved(map, 0.3, 1., true);
+    MumpsFactorization mumps(MPI_COMM_WORLD, MumpsFactorization::Symmetry::indefinite);
+    check(mumps.factorize(matrix), "interleaved decoupled rows: factorises", rank);
+    const double error = solution_error(mumps, matrix);
+    check(error < 1e-10,
+          "interleaved decoupled rows: relative error " + sci(error),
+          rank);
+    const int expected = negative_eigenvalues(chain, 0.3, 1.) + negative_diagonals;
+    check(mumps.negative_pivots() == expected,
+          "interleaved decoupled rows: " + std::to_string(mumps.negative_pivots()) +
+            " negative pivots, negative eigenvalues " + std::to_string(expected),
+          rank);
+
+    // The definite factorisation tells a negative decoupled diagonal: it fails (one
+    // rank: refused before MUMPS) or counts negative pivots (several: MUMPS sees it).
+    const Epetra_CrsMatrix spd_chain = interleaved(map, 2.5, -1., true);
+    MumpsFactorization     definite(MPI_COMM_WORLD,
+                                MumpsFactorization::Symmetry::positive_definite);
+    const bool             factorized = definite.factorize(spd_chain);
+    const bool one_rank = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) == 1;
+    check(one_rank ? !factorized && definite.failure().find("not positive definite") !=
+                                      std::string::npos
+                   : !factorized || definite.negative_pivots() > 0,
+          "SYM = 1, a negative decoupled diagonal tells: " +
+            (factorized ? std::to_string(definite.negative_pivots()) + " negative pivots"
+                        : definite.failure()),
+          rank);
+
+    // Positive definite, single precision, refined against the matrix.
+    const Epetra_CrsMatrix spd = interleaved(map, 2.5, -1., false);
+    MumpsFactorization     single(MPI_COMM_WORLD,
+                              MumpsFactorization::Symmetry::positive_definite,
+                              5,
+                              MumpsFactorization::Precision::single_refined);
+    check(single.factorize(spd), "interleaved SPD, single precision: factorises", rank);
+    const double single_error = solution_error(single, spd, 1e-12);
+    check(single_error < 1e-11 && single.negative_pivots() == 0,
+          "interleaved SPD, single precision refined: relative error " +
+            sci(single_error),
+          rank);
+
+    // Only a diagonal: MUMPS is not called at all.
+    const Epetra_CrsMatrix diagonal = interleaved(map, 0., 0., true, true);
+    MumpsFactorization     none(MPI_COMM_WORLD, MumpsFactorization::Symmetry::indefinite);
+    check(none.factorize(diagonal), "diagonal matrix: factorises", rank);
+    const double diagonal_error = solution_error(none, diagonal);
+    check(diagonal_error < 1e-15 && none.negative_pivots() == n / 6,
+          "diagonal matrix: relative error " + sci(diagonal_error) + ", " +
+            std::to_string(none.negative_pivots()) + " negative pivots",
           rank);
   }
   return failures == 0 ? 0 : 1;

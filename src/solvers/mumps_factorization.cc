@@ -3,6 +3,8 @@
 #include <dmumps_c.h>
 #include <smumps_c.h>
 
+#include <Epetra_IntVector.h>
+
 #include <algorithm>
 #include <sstream>
 
@@ -151,51 +153,142 @@ namespace clothsim
 
 
   bool
-  MumpsFactorization::factorize(const Epetra_CrsMatrix &matrix)
+  MumpsFactorization::set_up_rows(const Epetra_CrsMatrix &matrix)
   {
-    // The upper triangle of the owned rows, in row order: which entries of the row
-    // views belong to it is found once (the sparsity does not change after the analysis).
-    const bool first = !analysed;
-    if (first)
-      {
-        rows.clear();
-        columns.clear();
-        upper.clear();
-        for (int row = 0; row < matrix.NumMyRows(); ++row)
-          {
-            int     n_entries = 0;
-            double *row_values;
-            int    *row_columns;
-            matrix.ExtractMyRowView(row, n_entries, row_values, row_columns);
-            const int global_row = matrix.RowMap().GID(row);
-            for (int j = 0; j < n_entries; ++j)
-              {
-                const int global_column = matrix.ColMap().GID(row_columns[j]);
-                upper.push_back(global_column >= global_row);
-                if (upper.back())
-                  {
-                    rows.push_back(global_row + 1);
-                    columns.push_back(global_column + 1);
-                  }
-              }
-          }
-        values.resize(rows.size());
-      }
-    if (static_cast<std::size_t>(matrix.NumMyNonzeros()) != upper.size())
-      {
-        last_failure = "the matrix's sparsity changed after MUMPS analysed it";
-        return false;
-      }
-    std::size_t entry = 0, value = 0;
+    kept_rows.clear();
+    decoupled_rows.clear();
+    int n_ranks = 1;
+    MPI_Comm_size(communicator, &n_ranks);
+    const bool       single_rank = n_ranks == 1;
+    Epetra_IntVector new_index(matrix.RowMap());
     for (int row = 0; row < matrix.NumMyRows(); ++row)
       {
         int     n_entries = 0;
         double *row_values;
         int    *row_columns;
         matrix.ExtractMyRowView(row, n_entries, row_values, row_columns);
+        const bool decoupled =
+          single_rank && n_entries == 1 &&
+          matrix.ColMap().GID(row_columns[0]) == matrix.RowMap().GID(row);
+        (decoupled ? decoupled_rows : kept_rows).push_back(row);
+      }
+    const int n_local = static_cast<int>(kept_rows.size());
+    int       offset  = 0;
+    MPI_Exscan(&n_local, &offset, 1, MPI_INT, MPI_SUM, communicator);
+    int rank = 0;
+    MPI_Comm_rank(communicator, &rank);
+    if (rank == 0)
+      offset = 0; // MPI_Exscan leaves rank 0's result undefined
+    MPI_Allreduce(&n_local, &n_kept, 1, MPI_INT, MPI_SUM, communicator);
+    new_index.PutValue(-1);
+    std::vector<int> kept_indices(n_local);
+    for (int i = 0; i < n_local; ++i)
+      {
+        kept_indices[i]         = offset + i;
+        new_index[kept_rows[i]] = offset + i;
+      }
+    kept_map = std::make_unique<Epetra_Map>(
+      -1, n_local, kept_indices.data(), 0, matrix.RowMap().Comm());
+    Epetra_IntVector new_column_index(matrix.ColMap());
+    new_column_index.Import(new_index,
+                            Epetra_Import(matrix.ColMap(), matrix.RowMap()),
+                            Insert);
+
+    // The upper triangle in the new numbering: of each symmetric pair of entries, the
+    // one with new column >= new row.
+    rows.clear();
+    columns.clear();
+    upper.clear();
+    bool symmetric = true;
+    for (int row = 0; row < matrix.NumMyRows(); ++row)
+      {
+        int     n_entries = 0;
+        double *row_values;
+        int    *row_columns;
+        matrix.ExtractMyRowView(row, n_entries, row_values, row_columns);
+        for (int j = 0; j < n_entries; ++j)
+          {
+            const int column = new_column_index[row_columns[j]];
+            upper.push_back(new_index[row] >= 0 && column >= new_index[row]);
+            if (new_index[row] >= 0 && column < 0)
+              symmetric = false; // a kept row with an entry in a decoupled column
+            if (upper.back())
+              {
+                rows.push_back(new_index[row] + 1);
+                columns.push_back(column + 1);
+              }
+          }
+      }
+    values.resize(rows.size());
+    decoupled_diagonal.resize(decoupled_rows.size());
+    rhs_rows.resize(n_local);
+    for (int i = 0; i < n_local; ++i)
+      rhs_rows[i] = kept_indices[i] + 1;
+    rhs_values.resize(n_local);
+    if (!on_all_ranks(symmetric, communicator))
+      {
+        last_failure = "the matrix's sparsity is not symmetric (MUMPS needs it)";
+        return false;
+      }
+    return true;
+  }
+
+
+  bool
+  MumpsFactorization::factorize(const Epetra_CrsMatrix &matrix)
+  {
+    // Which entries of the row views go to MUMPS is found once (the sparsity does not
+    // change after the analysis).
+    const bool first = !analysed;
+    if (first && !set_up_rows(matrix))
+      return false;
+    if (static_cast<std::size_t>(matrix.NumMyNonzeros()) != upper.size())
+      {
+        last_failure = "the matrix's sparsity changed after MUMPS analysed it";
+        return false;
+      }
+    std::size_t entry = 0, value = 0, decoupled = 0;
+    int         n_negative = 0, n_zero = 0;
+    for (int row = 0; row < matrix.NumMyRows(); ++row)
+      {
+        int     n_entries = 0;
+        double *row_values;
+        int    *row_columns;
+        matrix.ExtractMyRowView(row, n_entries, row_values, row_columns);
+        if (decoupled < decoupled_rows.size() && decoupled_rows[decoupled] == row)
+          {
+            const double diagonal           = row_values[0];
+            decoupled_diagonal[decoupled++] = diagonal;
+            n_negative += diagonal < 0.;
+            n_zero += diagonal == 0.;
+            ++entry;
+            continue;
+          }
         for (int j = 0; j < n_entries; ++j, ++entry)
           if (upper[entry])
             values[value++] = row_values[j];
+      }
+    int counts[2] = {n_negative, n_zero}, totals[2] = {0, 0};
+    MPI_Allreduce(counts, totals, 2, MPI_INT, MPI_SUM, communicator);
+    n_negative_decoupled = totals[0];
+    if (totals[1] > 0)
+      {
+        last_failure =
+          "MUMPS factorisation failed: a row holds only a zero diagonal (the "
+          "matrix is singular)";
+        return false;
+      }
+    const bool definite = instance->visit([](auto &id) { return id.sym == 1; });
+    if (definite && n_negative_decoupled > 0)
+      {
+        last_failure = "MUMPS factorisation failed: a row holds only a negative diagonal "
+                       "(the matrix is not positive definite)";
+        return false;
+      }
+    if (n_kept == 0)
+      {
+        analysed = true;
+        return true;
       }
     if (instance->single)
       {
@@ -207,7 +300,7 @@ namespace clothsim
     if (first)
       {
         instance->visit([&](auto &id) {
-          id.n       = matrix.NumGlobalRows();
+          id.n       = n_kept;
           id.nnz_loc = static_cast<MUMPS_INT8>(rows.size());
           id.irn_loc = rows.data();
           id.jcn_loc = columns.data();
@@ -215,11 +308,6 @@ namespace clothsim
         if (!call(1, "analysis"))
           return false;
         analysed = true;
-
-        rhs_rows.resize(matrix.NumMyRows());
-        for (int row = 0; row < matrix.NumMyRows(); ++row)
-          rhs_rows[row] = matrix.RowMap().GID(row) + 1;
-        rhs_values.resize(rhs_rows.size());
       }
     if (!call(2, "factorisation"))
       return false;
@@ -283,16 +371,21 @@ namespace clothsim
   bool
   MumpsFactorization::solve_once(const Epetra_Vector &b, Epetra_Vector &x)
   {
+    for (std::size_t i = 0; i < decoupled_rows.size(); ++i)
+      x[decoupled_rows[i]] = b[decoupled_rows[i]] / decoupled_diagonal[i];
+    if (n_kept == 0)
+      return true;
+    for (std::size_t i = 0; i < kept_rows.size(); ++i)
+      rhs_values[i] = b[kept_rows[i]];
     if (instance->single)
       {
-        instance->rhs.assign(b.Values(), b.Values() + b.MyLength());
+        instance->rhs.assign(rhs_values.begin(), rhs_values.end());
         instance->solution.resize(solution_values.size());
         instance->s.rhs_loc = instance->rhs.data();
         instance->s.sol_loc = instance->solution.data();
       }
     else
       {
-        std::copy(b.Values(), b.Values() + b.MyLength(), rhs_values.begin());
         instance->d.rhs_loc = rhs_values.data();
         instance->d.sol_loc = solution_values.data();
       }
@@ -310,7 +403,7 @@ namespace clothsim
       std::copy(instance->solution.begin(),
                 instance->solution.end(),
                 solution_values.begin());
-    // This rank's solution entries: the first INFO(23) of ISOL_loc (1-based rows).
+    // This rank's solution entries: the first INFO(23) of ISOL_loc (1-based new rows).
     const int n_local = instance->visit([](auto &id) { return id.info[at(23)]; });
     bool      same    = from_solution != nullptr &&
                 static_cast<int>(mapped_rows.size()) == n_local &&
@@ -323,16 +416,22 @@ namespace clothsim
           global[i] = mapped_rows[i] - 1;
         solution_map =
           std::make_unique<Epetra_Map>(-1, n_local, global.data(), 0, x.Map().Comm());
-        from_solution = std::make_unique<Epetra_Import>(x.Map(), *solution_map);
+        from_solution = std::make_unique<Epetra_Import>(*kept_map, *solution_map);
       }
     const Epetra_Vector solution(View, *solution_map, solution_values.data());
-    return x.Import(solution, *from_solution, Insert) == 0;
+    Epetra_Vector       kept_solution(*kept_map);
+    if (kept_solution.Import(solution, *from_solution, Insert) != 0)
+      return false;
+    for (std::size_t i = 0; i < kept_rows.size(); ++i)
+      x[kept_rows[i]] = kept_solution[i];
+    return true;
   }
 
 
   int
   MumpsFactorization::negative_pivots() const
   {
-    return instance->visit([](auto &id) { return id.infog[at(12)]; });
+    return n_negative_decoupled +
+           (n_kept == 0 ? 0 : instance->visit([](auto &id) { return id.infog[at(12)]; }));
   }
 } // namespace clothsim

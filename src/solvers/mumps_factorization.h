@@ -114,16 +114,36 @@ namespace clothsim
     struct Instance; // MUMPS' DMUMPS_STRUC_C or SMUMPS_STRUC_C
     std::unique_ptr<Instance> instance;
     bool                      analysed = false;
-    // The upper triangle of the owned rows, row by row: 1-based global indices (fixed
-    // by the analysis) and the values of the matrix factorised last.
+    // On one rank, rows whose only entry is their diagonal (e.g. the unused vertex dofs
+    // of the director angles' P2 field, a seventh of the swinging sheet's unknowns) are
+    // solved here, x_i = b_i / a_ii, not by MUMPS: each would be a tree of its own in
+    // MUMPS' assembly forest (N = 81: 11,083 nodes with them, 4,522 without), and every
+    // node costs time in each factorisation and solve (N = 81: 42 against 47 ms per
+    // factorisation, 9.4 against 11.3 ms per solve). The others ("kept") are numbered
+    // 0, 1, ... across the ranks in their order, and MUMPS sees only those. On several
+    // ranks MUMPS gets every row: its solve adds the contributions that other ranks send
+    // in the order they arrive, and on the reduced matrix's mapping that order varied
+    // from run to run (swing N = 21 on 2 ranks: 5 of 70 solves repeated on the same
+    // factors differed in the last bits), which would break bitwise restarts.
+    std::vector<int>            kept_rows, decoupled_rows; // local row indices
+    std::vector<double>         decoupled_diagonal;        // a_ii, factorised last
+    int                         n_kept               = 0;  // over all ranks
+    int                         n_negative_decoupled = 0;  // over all ranks
+    std::unique_ptr<Epetra_Map> kept_map; // this rank's kept rows, by their new index
+    // The upper triangle of the kept rows, row by row: 1-based new indices (fixed by the
+    // analysis) and the values of the matrix factorised last.
     std::vector<int>    rows, columns;
     std::vector<double> values;
-    std::vector<bool>   upper; // by entry of the row views: in the upper triangle
-    // Right-hand side: the owned rows' 1-based global indices (IRHS_loc) and values.
+    std::vector<bool>   upper; // by entry of the row views: handed to MUMPS
+    // Right-hand side: the kept rows' 1-based new indices (IRHS_loc) and values.
     std::vector<int>    rhs_rows;
     std::vector<double> rhs_values;
+
+    // Numbers the kept rows, finds the entries for MUMPS (first factorisation).
+    bool
+    set_up_rows(const Epetra_CrsMatrix &matrix);
     // Solution as MUMPS distributes it (ISOL_loc, SOL_loc, fixed by the factorisation)
-    // and the import from there to the matrix's rows, made again when ISOL_loc changes.
+    // and the import from there to the kept rows, made again when ISOL_loc changes.
     std::vector<int>               solution_rows, mapped_rows;
     std::vector<double>            solution_values;
     std::unique_ptr<Epetra_Map>    solution_map;
