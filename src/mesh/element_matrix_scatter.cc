@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
 
 namespace clothsim::mesh
 {
@@ -33,6 +34,24 @@ namespace clothsim::mesh
         int    *columns   = nullptr;
         crs.ExtractMyRowView(row, n_entries, values, columns);
         row_values[row] = values;
+      }
+  }
+
+
+  void
+  ElementMatrixScatter::add_to_diagonal(TrilinosWrappers::SparseMatrix &matrix,
+                                        const std::vector<types::global_dof_index> &dofs,
+                                        const double                                value)
+  {
+    auto &crs = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
+    for (const types::global_dof_index dof : dofs)
+      {
+        const int row    = crs.LRID(static_cast<int>(dof));
+        const int column = crs.LCID(static_cast<int>(dof));
+        AssertThrow(row >= 0 && column >= 0 &&
+                      crs.SumIntoMyValues(row, 1, &value, &column) == 0,
+                    ExcMessage("the diagonal entry of dof " + std::to_string(dof) +
+                               " is not in this rank's rows of the matrix"));
       }
   }
 

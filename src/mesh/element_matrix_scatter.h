@@ -51,6 +51,15 @@ namespace clothsim::mesh
         const FullMatrix<double>                   &cell_matrix,
         const AffineConstraints<double>            &constraints);
 
+    // Adds `value` to the diagonal entry of each of `dofs` (all rows of this rank) by
+    // local indices, as distribute_local_to_global does for a constrained dof of a 1 x 1
+    // element matrix without its global lookups (swinging sheet, N = 81: the unit
+    // diagonal of its 6,561 unused angle dofs cost 1.5 % of the run that way).
+    static void
+    add_to_diagonal(TrilinosWrappers::SparseMatrix             &matrix,
+                    const std::vector<types::global_dof_index> &dofs,
+                    double                                      value);
+
   private:
     enum class Status : std::uint8_t
     {

@@ -280,15 +280,11 @@ namespace clothsim::physics
     if (hessian != nullptr)
       {
         // Unit diagonal on the unused (constrained) angle-component dofs.
-        FullMatrix<double>                   unit(1, 1);
-        std::vector<types::global_dof_index> single(1);
-        unit(0, 0) = 1.;
+        std::vector<types::global_dof_index> owned_unused;
         for (const types::global_dof_index dof : discretization.unused_dofs())
           if (discretization.owned_dofs().is_element(dof))
-            {
-              single[0] = dof;
-              constraints.distribute_local_to_global(unit, single, *hessian);
-            }
+            owned_unused.push_back(dof);
+        mesh::ElementMatrixScatter::add_to_diagonal(*hessian, owned_unused, 1.);
         hessian->compress(VectorOperation::add);
       }
     return Utilities::MPI::sum(value, discretization.get_communicator());
