@@ -290,9 +290,11 @@ namespace clothsim::physics
   {
     // h_i and φ_i with their first and (if a Hessian is wanted) second derivatives in
     // the 9 coordinates.
-    std::array<double, 3>                               h, phi;
-    std::array<std::array<double, 9>, 3>                dh, dphi;
-    std::array<std::array<std::array<double, 9>, 9>, 3> ddh{}, ddphi{};
+    std::array<double, 3>                h, phi;
+    std::array<std::array<double, 9>, 3> dh, dphi;
+    // Second derivatives: written (every entry) and read only with the exact Hessian, so
+    // not zeroed here (3.9 kB per triangle, on every gradient).
+    std::array<std::array<std::array<double, 9>, 9>, 3> ddh, ddphi;
     const auto c_x = [&x](const unsigned int component, const unsigned int vertex) {
       return x[vertex][component];
     };
