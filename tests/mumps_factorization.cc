@@ -8,6 +8,8 @@
 // Single-precision factors: their plain solve is accurate to single precision only (so
 // they are single), refinement in double brings it to the tolerance asked, and a matrix
 // too ill-conditioned for them fails with a message instead of a wrong answer.
+// On one rank the single-precision definite factorisation is SupernodalCholesky's (MUMPS
+// orders): the same checks hold for it.
 // Rows holding only their diagonal are solved outside MUMPS: the solution and the inertia
 // are the same, and the definite factorisation refuses a negative one.
 
@@ -217,8 +219,27 @@ main(int argc, char **argv)
             std::to_string(mumps.refinements()) + " refinement steps",
           rank);
 
+    // The definite single-precision factorisation of an indefinite T tells too (on one
+    // rank it is SupernodalCholesky's, which fails at the first pivot that is not
+    // positive); so does the next SPD one on the same factorisation object.
     const Epetra_CrsMatrix indefinite = toeplitz(map, 0.3, 1.);
-    MumpsFactorization     pivoting(MPI_COMM_WORLD,
+    {
+      MumpsFactorization definite(MPI_COMM_WORLD,
+                                  MumpsFactorization::Symmetry::positive_definite,
+                                  5,
+                                  Precision::single_refined);
+      const bool         factorized = definite.factorize(indefinite);
+      check(!factorized || definite.negative_pivots() > 0,
+            "single precision, SYM = 1 on indefinite T tells: " +
+              (factorized
+                 ? std::to_string(definite.negative_pivots()) + " negative pivots"
+                 : definite.failure()),
+            rank);
+      check(definite.factorize(matrix) && solution_error(definite, matrix, 1e-12) < 1e-11,
+            "single precision, SYM = 1: then SPD T factorises and solves",
+            rank);
+    }
+    MumpsFactorization pivoting(MPI_COMM_WORLD,
                                 MumpsFactorization::Symmetry::indefinite,
                                 5,
                                 Precision::single_refined);

@@ -1,5 +1,7 @@
 #include "solvers/mumps_factorization.h"
 
+#include "solvers/supernodal_cholesky.h"
+
 #include <dmumps_c.h>
 #include <smumps_c.h>
 
@@ -308,6 +310,16 @@ namespace clothsim
         if (!call(1, "analysis"))
           return false;
         analysed = true;
+        set_up_cholesky();
+      }
+    if (cholesky)
+      {
+        if (cholesky->factorize(values.data()))
+          return true;
+        last_failure = "the Cholesky factorisation met a pivot that is not positive (the "
+                       "matrix is not positive definite, or too ill-conditioned for "
+                       "single precision)";
+        return false;
       }
     if (!call(2, "factorisation"))
       return false;
@@ -377,6 +389,13 @@ namespace clothsim
       return true;
     for (std::size_t i = 0; i < kept_rows.size(); ++i)
       rhs_values[i] = b[kept_rows[i]];
+    if (cholesky)
+      {
+        cholesky->solve(rhs_values.data());
+        for (std::size_t i = 0; i < kept_rows.size(); ++i)
+          x[kept_rows[i]] = rhs_values[i];
+        return true;
+      }
     if (instance->single)
       {
         instance->rhs.assign(rhs_values.begin(), rhs_values.end());
@@ -432,6 +451,30 @@ namespace clothsim
   MumpsFactorization::negative_pivots() const
   {
     return n_negative_decoupled +
-           (n_kept == 0 ? 0 : instance->visit([](auto &id) { return id.infog[at(12)]; }));
+           (n_kept == 0 || cholesky ? 0 : instance->visit([](auto &id) {
+             return id.infog[at(12)];
+           }));
+  }
+
+
+  void
+  MumpsFactorization::set_up_cholesky()
+  {
+    int n_ranks = 1;
+    MPI_Comm_size(communicator, &n_ranks);
+    if (n_ranks != 1 || !instance->single || instance->s.sym != 1)
+      return;
+    // SYM_PERM(i): the position of row i in MUMPS' elimination order.
+    std::vector<int> order(n_kept), pattern_rows(rows.size()),
+      pattern_columns(rows.size());
+    for (int i = 0; i < n_kept; ++i)
+      order[instance->s.sym_perm[i] - 1] = i;
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      {
+        pattern_rows[k]    = rows[k] - 1;
+        pattern_columns[k] = columns[k] - 1;
+      }
+    cholesky = std::make_unique<SupernodalCholesky>();
+    cholesky->analyse(n_kept, pattern_rows, pattern_columns, order);
   }
 } // namespace clothsim

@@ -23,6 +23,8 @@
 
 namespace clothsim
 {
+  class SupernodalCholesky;
+
   class MumpsFactorization
   {
   public:
@@ -149,5 +151,12 @@ namespace clothsim
     std::unique_ptr<Epetra_Map>    solution_map;
     std::unique_ptr<Epetra_Import> from_solution;
     std::string                    last_failure;
+
+    // On one rank, positive definite, single precision: MUMPS orders and analyses, and
+    // the factorisations and solves are SupernodalCholesky's (swinging sheet, N = 81:
+    // 14 against 34 ms per factorisation, 1.4 against 4 ms per solve).
+    std::unique_ptr<SupernodalCholesky> cholesky;
+    void
+    set_up_cholesky();
   };
 } // namespace clothsim

@@ -1,0 +1,492 @@
+#include "solvers/supernodal_cholesky.h"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+
+// BLAS and LAPACK (OpenBLAS on Debian), single precision, column-major.
+extern "C" {
+void
+spotrf_(const char *uplo, const int *n, float *a, const int *lda, int *info);
+void
+strsm_(const char  *side,
+       const char  *uplo,
+       const char  *transa,
+       const char  *diag,
+       const int   *m,
+       const int   *n,
+       const float *alpha,
+       const float *a,
+       const int   *lda,
+       float       *b,
+       const int   *ldb);
+void
+ssyrk_(const char  *uplo,
+       const char  *trans,
+       const int   *n,
+       const int   *k,
+       const float *alpha,
+       const float *a,
+       const int   *lda,
+       const float *beta,
+       float       *c,
+       const int   *ldc);
+void
+strsv_(const char  *uplo,
+       const char  *trans,
+       const char  *diag,
+       const int   *n,
+       const float *a,
+       const int   *lda,
+       float       *x,
+       const int   *incx);
+void
+sgemv_(const char  *trans,
+       const int   *m,
+       const int   *n,
+       const float *alpha,
+       const float *a,
+       const int   *lda,
+       const float *x,
+       const int   *incx,
+       const float *beta,
+       float       *y,
+       const int   *incy);
+}
+
+namespace clothsim
+{
+  namespace
+  {
+    // Liu's elimination tree of the lower pattern given by rows: for each row i, the
+    // columns j < i of its entries (SIAM J. Matrix Anal. Appl. 11, 1990, alg. 4.2).
+    std::vector<int>
+    elimination_tree(const std::vector<std::vector<int>> &row_entries)
+    {
+      const int        n = static_cast<int>(row_entries.size());
+      std::vector<int> parent(n, -1), ancestor(n, -1);
+      for (int i = 0; i < n; ++i)
+        for (int j : row_entries[i])
+          for (int r = j; r != -1 && r != i;)
+            {
+              const int next = ancestor[r];
+              ancestor[r]    = i;
+              if (next == -1)
+                parent[r] = i;
+              r = next;
+            }
+      return parent;
+    }
+
+    // A postorder of the forest: post[p] is the node visited p-th.
+    std::vector<int>
+    postorder(const std::vector<int> &parent)
+    {
+      const int        n = static_cast<int>(parent.size());
+      std::vector<int> head(n, -1), next(n, -1), post, stack;
+      for (int j = n - 1; j >= 0; --j) // children listed in increasing order
+        if (parent[j] != -1)
+          {
+            next[j]         = head[parent[j]];
+            head[parent[j]] = j;
+          }
+      post.reserve(n);
+      for (int root = 0; root < n; ++root)
+        {
+          if (parent[root] != -1)
+            continue;
+          stack.push_back(root);
+          while (!stack.empty())
+            {
+              const int j = stack.back();
+              if (head[j] != -1)
+                {
+                  const int child = head[j];
+                  head[j]         = next[child];
+                  stack.push_back(child);
+                }
+              else
+                {
+                  post.push_back(j);
+                  stack.pop_back();
+                }
+            }
+        }
+      return post;
+    }
+
+    // Relaxed amalgamation: merge a child supernode of `columns` columns into its
+    // parent if the merged one has at most 4 columns, or its explicit zeros stay
+    // below a fraction that falls with its size (CHOLMOD's defaults).
+    bool
+    amalgamate(const int columns, const double zero_fraction)
+    {
+      return columns <= 4 || (columns <= 16 && zero_fraction < 0.8) ||
+             (columns <= 48 && zero_fraction < 0.1) || zero_fraction < 0.05;
+    }
+  } // namespace
+
+
+  void
+  SupernodalCholesky::analyse(const int               n_rows,
+                              const std::vector<int> &rows,
+                              const std::vector<int> &columns,
+                              const std::vector<int> &order)
+  {
+    n = n_rows;
+    if (static_cast<int>(order.size()) != n || rows.size() != columns.size())
+      throw std::invalid_argument("SupernodalCholesky::analyse: sizes differ");
+    std::vector<int> position(n, -1);
+    for (int p = 0; p < n; ++p)
+      {
+        if (order[p] < 0 || order[p] >= n || position[order[p]] != -1)
+          throw std::invalid_argument("SupernodalCholesky::analyse: not a permutation");
+        position[order[p]] = p;
+      }
+
+    // The lower pattern in elimination order, by rows; then the same in the order of
+    // a postorder of its elimination tree (children before parents, subtrees
+    // contiguous), which is the final permutation.
+    const auto rows_of = [&](const std::vector<int> &where) {
+      std::vector<std::vector<int>> row_entries(n);
+      for (std::size_t k = 0; k < rows.size(); ++k)
+        {
+          const int a = where[rows[k]], b = where[columns[k]];
+          if (a != b)
+            row_entries[std::max(a, b)].push_back(std::min(a, b));
+        }
+      return row_entries;
+    };
+    {
+      const std::vector<int> post = postorder(elimination_tree(rows_of(position)));
+      std::vector<int>       relabel(n);
+      for (int p = 0; p < n; ++p)
+        relabel[post[p]] = p;
+      permutation.resize(n);
+      for (int i = 0; i < n; ++i)
+        permutation[i] = relabel[position[i]];
+    }
+    const std::vector<std::vector<int>> row_entries = rows_of(permutation);
+    const std::vector<int>              parent      = elimination_tree(row_entries);
+    std::vector<std::vector<int>>       column_entries(n);
+    for (int i = 0; i < n; ++i)
+      for (int j : row_entries[i])
+        column_entries[j].push_back(i);
+
+    // Column structures of L (rows below the diagonal): A's column joined with each
+    // child's structure less the child itself. A fundamental supernode is a chain j,
+    // j + 1, ... in which each column is its successor's only child and its structure
+    // is the successor's plus the successor: only the chain's first column keeps its
+    // structure, and column c's is the entries of its chain's first beyond c.
+    std::vector<std::vector<int>> first_structure;
+    std::vector<int>              chain_of(n), chain_first, n_kids(n, 0), marker(n, -1);
+    std::vector<std::int64_t>     count(n);
+    std::vector<int>              head(n, -1), next(n, -1);
+    for (int j = n - 1; j >= 0; --j)
+      if (parent[j] != -1)
+        {
+          ++n_kids[parent[j]];
+          next[j]         = head[parent[j]];
+          head[parent[j]] = j;
+        }
+    std::vector<int> s;
+    for (int j = 0; j < n; ++j)
+      {
+        s.clear();
+        marker[j] = j;
+        for (int i : column_entries[j])
+          if (marker[i] != j)
+            {
+              marker[i] = j;
+              s.push_back(i);
+            }
+        for (int c = head[j]; c != -1; c = next[c])
+          {
+            const std::vector<int> &chain = first_structure[chain_of[c]];
+            for (auto i = std::upper_bound(chain.begin(), chain.end(), c);
+                 i != chain.end();
+                 ++i)
+              if (marker[*i] != j)
+                {
+                  marker[*i] = j;
+                  s.push_back(*i);
+                }
+          }
+        count[j] = static_cast<std::int64_t>(s.size()) + 1;
+        if (j > 0 && parent[j - 1] == j && n_kids[j] == 1 && count[j - 1] == count[j] + 1)
+          chain_of[j] = chain_of[j - 1];
+        else
+          {
+            chain_of[j] = static_cast<int>(chain_first.size());
+            chain_first.push_back(j);
+            std::sort(s.begin(), s.end());
+            first_structure.push_back(s);
+          }
+      }
+    const int n_chains = static_cast<int>(chain_first.size());
+    chain_first.push_back(n);
+
+    // Relaxed amalgamation, children before parents: a chain absorbs the supernode
+    // that ends just before it (its last child in the postorder) while the merged
+    // supernode's explicit zeros stay small. The merged rows below are the parent's:
+    // a child's structure lies within its parent's columns and rows.
+    std::vector<int>          merged_into(n_chains, -1), begin(n_chains);
+    std::vector<std::int64_t> true_entries(n_chains, 0);
+    const auto                representative = [&](int c) {
+      while (merged_into[c] != -1)
+        c = merged_into[c];
+      return c;
+    };
+    for (int c = 0; c < n_chains; ++c)
+      {
+        begin[c] = chain_first[c];
+        for (int j = chain_first[c]; j < chain_first[c + 1]; ++j)
+          true_entries[c] += count[j];
+      }
+    for (int p = 0; p < n_chains; ++p)
+      while (begin[p] > 0)
+        {
+          const int child = representative(chain_of[begin[p] - 1]);
+          const int last  = chain_first[child + 1] - 1; // the child's last column
+          if (parent[last] != begin[p])
+            break; // begin[p] has no children
+          const std::int64_t k = chain_first[p + 1] - begin[child];
+          const std::int64_t r = static_cast<std::int64_t>(first_structure[p].size()) -
+                                 (chain_first[p + 1] - chain_first[p] - 1);
+          const std::int64_t stored = k * (k + 1) / 2 + k * r;
+          const double       zeros =
+            static_cast<double>(stored - true_entries[p] - true_entries[child]) / stored;
+          if (!amalgamate(static_cast<int>(k), zeros))
+            break;
+          merged_into[child] = p;
+          true_entries[p] += true_entries[child];
+          begin[p] = begin[child];
+        }
+    // (chain_first[c + 1] - 1 is c's last column only while c is unmerged, which is
+    // the case above: a child is merged once, into the chain after it.)
+
+    // The supernodes: unmerged chains, in order of their columns.
+    first_column.clear();
+    below_start.assign(1, 0);
+    below_rows.clear();
+    std::vector<int> supernode_of(n);
+    for (int c = 0; c < n_chains; ++c)
+      if (merged_into[c] == -1)
+        {
+          const int s = static_cast<int>(first_column.size());
+          first_column.push_back(begin[c]);
+          for (int j = begin[c]; j < chain_first[c + 1]; ++j)
+            supernode_of[j] = s;
+          const std::vector<int> &chain = first_structure[c];
+          for (auto i =
+                 std::upper_bound(chain.begin(), chain.end(), chain_first[c + 1] - 1);
+               i != chain.end();
+               ++i)
+            below_rows.push_back(*i);
+          below_start.push_back(static_cast<int>(below_rows.size()));
+        }
+    const int n_nodes = static_cast<int>(first_column.size());
+    first_column.push_back(n);
+    first_structure.clear();
+
+    // Where a row of supernode s's front is: its columns first, then its rows below.
+    const auto local_row = [&](const int s, const int row) {
+      if (row < first_column[s + 1])
+        return row - first_column[s];
+      const auto b = below_rows.begin() + below_start[s],
+                 e = below_rows.begin() + below_start[s + 1];
+      return static_cast<int>(std::lower_bound(b, e, row) - b) +
+             (first_column[s + 1] - first_column[s]);
+    };
+    const auto front_size = [&](const int s) {
+      return first_column[s + 1] - first_column[s] + below_start[s + 1] - below_start[s];
+    };
+
+    // Each matrix entry's place in its front (column-major, m x m).
+    std::vector<int> entry_count(n_nodes + 1, 0);
+    std::vector<int> entry_node(rows.size());
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      {
+        const int a = permutation[rows[k]], b = permutation[columns[k]];
+        entry_node[k] = supernode_of[std::min(a, b)];
+        ++entry_count[entry_node[k] + 1];
+      }
+    std::partial_sum(entry_count.begin(), entry_count.end(), entry_count.begin());
+    entry_start = entry_count;
+    entry_index.resize(rows.size());
+    entry_position.resize(rows.size());
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      {
+        const int a = permutation[rows[k]], b = permutation[columns[k]];
+        const int node     = entry_node[k];
+        const int column   = std::min(a, b) - first_column[node];
+        const int at       = entry_count[node]++;
+        entry_index[at]    = static_cast<int>(k);
+        entry_position[at] = local_row(node, std::max(a, b)) +
+                             static_cast<std::int64_t>(column) * front_size(node);
+      }
+
+    // Each update row's place in the parent's front; the factor's storage; the
+    // largest front and the deepest stack of waiting updates.
+    std::vector<int> n_children(n_nodes + 1, 0);
+    for (int s = 0; s < n_nodes; ++s)
+      if (below_start[s + 1] > below_start[s])
+        ++n_children[supernode_of[below_rows[below_start[s]]] + 1];
+    std::partial_sum(n_children.begin(), n_children.end(), n_children.begin());
+    child_start = n_children;
+    child_list.resize(child_start.back());
+    for (int s = 0; s < n_nodes; ++s)
+      if (below_start[s + 1] > below_start[s])
+        child_list[n_children[supernode_of[below_rows[below_start[s]]]]++] = s;
+    parent_map_start.assign(1, 0);
+    parent_map.clear();
+    factor_start.assign(1, 0);
+    std::int64_t largest = 0, stack = 0;
+    max_stack    = 0;
+    n_operations = 0.;
+    std::vector<std::int64_t> pushed;
+    for (int s = 0; s < n_nodes; ++s)
+      {
+        const std::int64_t k = first_column[s + 1] - first_column[s],
+                           r = below_start[s + 1] - below_start[s], m = k + r;
+        largest = std::max(largest, m);
+        factor_start.push_back(factor_start.back() + m * k);
+        n_operations += k * k * k / 3. + k * k * r + k * r * r;
+        for (int c = child_start[s]; c < child_start[s + 1]; ++c)
+          {
+            stack -= pushed.back();
+            pushed.pop_back();
+          }
+        if (r > 0)
+          {
+            const int p = supernode_of[below_rows[below_start[s]]];
+            for (int i = below_start[s]; i < below_start[s + 1]; ++i)
+              parent_map.push_back(local_row(p, below_rows[i]));
+            pushed.push_back(r * r);
+            stack += r * r;
+            max_stack = std::max(max_stack, stack);
+          }
+        parent_map_start.push_back(static_cast<int>(parent_map.size()));
+      }
+    n_factor_entries = factor_start.back();
+    factor.assign(n_factor_entries, 0.f);
+    front.assign(largest * largest, 0.f);
+    update_stack.assign(max_stack, 0.f);
+    work.assign(largest, 0.f);
+    rhs.assign(n, 0.f);
+  }
+
+
+  bool
+  SupernodalCholesky::factorize(const double *values)
+  {
+    const int    n_nodes = n_supernodes();
+    const float  one = 1.f, minus_one = -1.f;
+    std::int64_t top = 0; // end of the update stack
+    for (int s = 0; s < n_nodes; ++s)
+      {
+        const int k = first_column[s + 1] - first_column[s],
+                  r = below_start[s + 1] - below_start[s], m = k + r;
+        float *F = front.data();
+        for (int j = 0; j < m; ++j)
+          std::fill(F + static_cast<std::int64_t>(j) * m + j,
+                    F + static_cast<std::int64_t>(j + 1) * m,
+                    0.f);
+        for (int e = entry_start[s]; e < entry_start[s + 1]; ++e)
+          F[entry_position[e]] += static_cast<float>(values[entry_index[e]]);
+        // The children's updates are the top of the stack, in the children's order
+        // (the postorder: each child's subtree has consumed its own).
+        std::int64_t from = top;
+        for (int c = child_start[s]; c < child_start[s + 1]; ++c)
+          {
+            const std::int64_t rc =
+              below_start[child_list[c] + 1] - below_start[child_list[c]];
+            from -= rc * rc;
+          }
+        top = from;
+        for (int c = child_start[s]; c < child_start[s + 1]; ++c)
+          {
+            const int    child = child_list[c];
+            const int   *map   = parent_map.data() + parent_map_start[child];
+            const int    rc    = parent_map_start[child + 1] - parent_map_start[child];
+            const float *U     = update_stack.data() + from;
+            for (int jj = 0; jj < rc; ++jj)
+              {
+                float       *column = F + static_cast<std::int64_t>(map[jj]) * m;
+                const float *u      = U + static_cast<std::int64_t>(jj) * rc;
+                for (int ii = jj; ii < rc; ++ii)
+                  column[map[ii]] += u[ii];
+              }
+            from += static_cast<std::int64_t>(rc) * rc;
+          }
+        int info = 0;
+        spotrf_("L", &k, F, &m, &info);
+        if (info != 0)
+          return false;
+        if (r > 0)
+          {
+            strsm_("R", "L", "T", "N", &r, &k, &one, F, &m, F + k, &m);
+            ssyrk_("L", "N", &r, &k, &minus_one, F + k, &m, &one, F + k + k * m, &m);
+          }
+        float *L = factor.data() + factor_start[s];
+        for (int j = 0; j < k; ++j)
+          std::copy(F + static_cast<std::int64_t>(j) * m + j,
+                    F + static_cast<std::int64_t>(j + 1) * m,
+                    L + static_cast<std::int64_t>(j) * m + j);
+        if (r > 0)
+          {
+            float *U = update_stack.data() + top;
+            for (int j = 0; j < r; ++j)
+              std::copy(F + static_cast<std::int64_t>(k + j) * m + k + j,
+                        F + static_cast<std::int64_t>(k + j + 1) * m,
+                        U + static_cast<std::int64_t>(j) * r + j);
+            top += static_cast<std::int64_t>(r) * r;
+          }
+      }
+    return true;
+  }
+
+
+  void
+  SupernodalCholesky::solve(double *x)
+  {
+    const int   n_nodes = n_supernodes();
+    const int   one     = 1;
+    const float f_one = 1.f, f_zero = 0.f, f_minus_one = -1.f;
+    for (int i = 0; i < n; ++i)
+      rhs[permutation[i]] = static_cast<float>(x[i]);
+    for (int s = 0; s < n_nodes; ++s)
+      {
+        const int k = first_column[s + 1] - first_column[s],
+                  r = below_start[s + 1] - below_start[s], m = k + r;
+        const float *L  = factor.data() + factor_start[s];
+        float       *xs = rhs.data() + first_column[s];
+        strsv_("L", "N", "N", &k, L, &m, xs, &one);
+        if (r > 0)
+          {
+            sgemv_("N", &r, &k, &f_one, L + k, &m, xs, &one, &f_zero, work.data(), &one);
+            const int *below = below_rows.data() + below_start[s];
+            for (int i = 0; i < r; ++i)
+              rhs[below[i]] -= work[i];
+          }
+      }
+    for (int s = n_nodes - 1; s >= 0; --s)
+      {
+        const int k = first_column[s + 1] - first_column[s],
+                  r = below_start[s + 1] - below_start[s], m = k + r;
+        const float *L  = factor.data() + factor_start[s];
+        float       *xs = rhs.data() + first_column[s];
+        if (r > 0)
+          {
+            const int *below = below_rows.data() + below_start[s];
+            for (int i = 0; i < r; ++i)
+              work[i] = rhs[below[i]];
+            sgemv_(
+              "T", &r, &k, &f_minus_one, L + k, &m, work.data(), &one, &f_one, xs, &one);
+          }
+        strsv_("L", "T", "N", &k, L, &m, xs, &one);
+      }
+    for (int i = 0; i < n; ++i)
+      x[i] = rhs[permutation[i]];
+  }
+} // namespace clothsim
