@@ -251,7 +251,25 @@ namespace clothsim
       }
     std::size_t entry = 0, value = 0, decoupled = 0;
     int         n_negative = 0, n_zero = 0;
-    for (int row = 0; row < matrix.NumMyRows(); ++row)
+    // The Cholesky reads the matrix's own value array (its entries' positions there
+    // fixed by the analysis): only the decoupled diagonals are copied.
+    double *crs_values = nullptr;
+    int    *crs_offsets, *crs_columns;
+    if (cholesky &&
+        matrix.ExtractCrsDataPointers(crs_offsets, crs_columns, crs_values) != 0)
+      {
+        last_failure = "the matrix's storage changed after the analysis";
+        return false;
+      }
+    if (crs_values != nullptr)
+      for (const int row : decoupled_rows)
+        {
+          const double diagonal           = crs_values[crs_offsets[row]];
+          decoupled_diagonal[decoupled++] = diagonal;
+          n_negative += diagonal < 0.;
+          n_zero += diagonal == 0.;
+        }
+    for (int row = 0; crs_values == nullptr && row < matrix.NumMyRows(); ++row)
       {
         int     n_entries = 0;
         double *row_values;
@@ -292,7 +310,7 @@ namespace clothsim
         analysed = true;
         return true;
       }
-    if (instance->single)
+    if (instance->single && !cholesky)
       {
         instance->values.assign(values.begin(), values.end());
         instance->s.a_loc = instance->values.data();
@@ -310,11 +328,13 @@ namespace clothsim
         if (!call(1, "analysis"))
           return false;
         analysed = true;
-        set_up_cholesky();
+        set_up_cholesky(matrix);
+        if (cholesky)
+          return factorize(matrix); // from the matrix's value array
       }
     if (cholesky)
       {
-        if (cholesky->factorize(values.data()))
+        if (cholesky->factorize(crs_values))
           return true;
         last_failure = "the Cholesky factorisation met a pivot that is not positive (the "
                        "matrix is not positive definite, or too ill-conditioned for "
@@ -458,11 +478,12 @@ namespace clothsim
 
 
   void
-  MumpsFactorization::set_up_cholesky()
+  MumpsFactorization::set_up_cholesky(const Epetra_CrsMatrix &matrix)
   {
     int n_ranks = 1;
     MPI_Comm_size(communicator, &n_ranks);
-    if (n_ranks != 1 || !instance->single || instance->s.sym != 1)
+    if (n_ranks != 1 || !instance->single || instance->s.sym != 1 ||
+        !matrix.StorageOptimized())
       return;
     // SYM_PERM(i): the position of row i in MUMPS' elimination order.
     std::vector<int> order(n_kept), pattern_rows(rows.size()),
@@ -474,7 +495,14 @@ namespace clothsim
         pattern_rows[k]    = rows[k] - 1;
         pattern_columns[k] = columns[k] - 1;
       }
+    // Each entry's position in the matrix's value array (its rows stored one after
+    // the other: StorageOptimized).
+    std::vector<int> value_index;
+    value_index.reserve(rows.size());
+    for (std::size_t entry = 0; entry < upper.size(); ++entry)
+      if (upper[entry])
+        value_index.push_back(static_cast<int>(entry));
     cholesky = std::make_unique<SupernodalCholesky>();
-    cholesky->analyse(n_kept, pattern_rows, pattern_columns, order);
+    cholesky->analyse(n_kept, pattern_rows, pattern_columns, order, value_index);
   }
 } // namespace clothsim

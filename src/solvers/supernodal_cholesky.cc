@@ -131,10 +131,12 @@ namespace clothsim
   SupernodalCholesky::analyse(const int               n_rows,
                               const std::vector<int> &rows,
                               const std::vector<int> &columns,
-                              const std::vector<int> &order)
+                              const std::vector<int> &order,
+                              const std::vector<int> &value_index)
   {
     n = n_rows;
-    if (static_cast<int>(order.size()) != n || rows.size() != columns.size())
+    if (static_cast<int>(order.size()) != n || rows.size() != columns.size() ||
+        (!value_index.empty() && value_index.size() != rows.size()))
       throw std::invalid_argument("SupernodalCholesky::analyse: sizes differ");
     std::vector<int> position(n, -1);
     for (int p = 0; p < n; ++p)
@@ -321,7 +323,7 @@ namespace clothsim
         const int node     = entry_node[k];
         const int column   = std::min(a, b) - first_column[node];
         const int at       = entry_count[node]++;
-        entry_index[at]    = static_cast<int>(k);
+        entry_index[at]    = value_index.empty() ? static_cast<int>(k) : value_index[k];
         entry_position[at] = local_row(node, std::max(a, b)) +
                              static_cast<std::int64_t>(column) * front_size(node);
       }
@@ -387,13 +389,20 @@ namespace clothsim
       {
         const int k = first_column[s + 1] - first_column[s],
                   r = below_start[s + 1] - below_start[s], m = k + r;
-        float *F = front.data();
-        for (int j = 0; j < m; ++j)
-          std::fill(F + static_cast<std::int64_t>(j) * m + j,
-                    F + static_cast<std::int64_t>(j + 1) * m,
+        // The front: its first k columns (m x k) in place in the factor, the rest
+        // (r x r, the update for the parent) in `front`; lower triangles only.
+        float *P = factor.data() + factor_start[s];
+        float *U = front.data();
+        for (int j = 0; j < k; ++j)
+          std::fill(P + static_cast<std::int64_t>(j) * m + j,
+                    P + static_cast<std::int64_t>(j + 1) * m,
+                    0.f);
+        for (int j = 0; j < r; ++j)
+          std::fill(U + static_cast<std::int64_t>(j) * r + j,
+                    U + static_cast<std::int64_t>(j + 1) * r,
                     0.f);
         for (int e = entry_start[s]; e < entry_start[s + 1]; ++e)
-          F[entry_position[e]] += static_cast<float>(values[entry_index[e]]);
+          P[entry_position[e]] += static_cast<float>(values[entry_index[e]]);
         // The children's updates are the top of the stack, in the children's order
         // (the postorder: each child's subtree has consumed its own).
         std::int64_t from = top;
@@ -409,37 +418,33 @@ namespace clothsim
             const int    child = child_list[c];
             const int   *map   = parent_map.data() + parent_map_start[child];
             const int    rc    = parent_map_start[child + 1] - parent_map_start[child];
-            const float *U     = update_stack.data() + from;
-            for (int jj = 0; jj < rc; ++jj)
+            const float *V     = update_stack.data() + from;
+            int          jj    = 0;
+            for (; jj < rc && map[jj] < k; ++jj)
               {
-                float       *column = F + static_cast<std::int64_t>(map[jj]) * m;
-                const float *u      = U + static_cast<std::int64_t>(jj) * rc;
+                float       *column = P + static_cast<std::int64_t>(map[jj]) * m;
+                const float *v      = V + static_cast<std::int64_t>(jj) * rc;
                 for (int ii = jj; ii < rc; ++ii)
-                  column[map[ii]] += u[ii];
+                  column[map[ii]] += v[ii];
+              }
+            for (; jj < rc; ++jj)
+              {
+                float       *column = U + static_cast<std::int64_t>(map[jj] - k) * r - k;
+                const float *v      = V + static_cast<std::int64_t>(jj) * rc;
+                for (int ii = jj; ii < rc; ++ii)
+                  column[map[ii]] += v[ii];
               }
             from += static_cast<std::int64_t>(rc) * rc;
           }
         int info = 0;
-        spotrf_("L", &k, F, &m, &info);
+        spotrf_("L", &k, P, &m, &info);
         if (info != 0)
           return false;
         if (r > 0)
           {
-            strsm_("R", "L", "T", "N", &r, &k, &one, F, &m, F + k, &m);
-            ssyrk_("L", "N", &r, &k, &minus_one, F + k, &m, &one, F + k + k * m, &m);
-          }
-        float *L = factor.data() + factor_start[s];
-        for (int j = 0; j < k; ++j)
-          std::copy(F + static_cast<std::int64_t>(j) * m + j,
-                    F + static_cast<std::int64_t>(j + 1) * m,
-                    L + static_cast<std::int64_t>(j) * m + j);
-        if (r > 0)
-          {
-            float *U = update_stack.data() + top;
-            for (int j = 0; j < r; ++j)
-              std::copy(F + static_cast<std::int64_t>(k + j) * m + k + j,
-                        F + static_cast<std::int64_t>(k + j + 1) * m,
-                        U + static_cast<std::int64_t>(j) * r + j);
+            strsm_("R", "L", "T", "N", &r, &k, &one, P, &m, P + k, &m);
+            ssyrk_("L", "N", &r, &k, &minus_one, P + k, &m, &one, U, &r);
+            std::copy(U, U + static_cast<std::int64_t>(r) * r, update_stack.data() + top);
             top += static_cast<std::int64_t>(r) * r;
           }
       }

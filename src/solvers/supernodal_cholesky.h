@@ -21,15 +21,18 @@ namespace clothsim
   public:
     // The pattern of the upper triangle (0-based, rows[k] <= columns[k], each entry
     // once), and the elimination order: order[p] is the row eliminated p-th (a
-    // fill-reducing permutation, e.g. from MUMPS' analysis).
+    // fill-reducing permutation, e.g. from MUMPS' analysis). Entry k's value will be
+    // values[value_index[k]] in factorize() (values[k] if value_index is empty), e.g.
+    // its position in a compressed-row matrix's value array that holds both triangles.
     void
     analyse(int                     n,
             const std::vector<int> &rows,
             const std::vector<int> &columns,
-            const std::vector<int> &order);
+            const std::vector<int> &order,
+            const std::vector<int> &value_index = {});
 
-    // Factorises the matrix whose upper-triangle entries are `values` (in the order of
-    // analyse()'s pattern). Returns false if a pivot is not positive (the matrix is not
+    // Factorises the matrix whose upper-triangle entries are in `values` (where
+    // analyse() placed them). Returns false if a pivot is not positive (the matrix is not
     // positive definite, or too ill-conditioned for single precision).
     bool
     factorize(const double *values);
