@@ -25,8 +25,7 @@ namespace clothsim
 {
   namespace
   {
-    // A Newton iterate whose residual exceeds this factor times the initial residual has
-    // diverged.
+    // A residual this many times the initial one has diverged.
     constexpr double divergence_factor = 1e10;
 
     using TrilinosVector = TrilinosWrappers::MPI::Vector;
@@ -89,8 +88,7 @@ namespace clothsim
       Context &context;
     };
 
-    // NOX's linear system: the tangent as a TrilinosWrappers matrix, solved by
-    // LinearSolver.
+    // NOX's linear system: the tangent (TrilinosWrappers), solved by LinearSolver.
     class LinearSystem : public NOX::Epetra::LinearSystem
     {
     public:
@@ -501,6 +499,9 @@ namespace clothsim
     const NOX::Epetra::Vector initial_guess(initial);
     auto                      group = Teuchos::rcp(new NOX::Epetra::Group(
       nox_parameters->sublist("Printing"), interface, initial_guess, linear_system));
+    // NOX's ‖J d + F‖ after each solve (a product with the tangent) is read only by
+    // the Eisenstat–Walker forcing term.
+    group->disableLinearResidualComputation(parameters.method != NewtonMethod::inexact);
 
     // Converged when ||F|| < absolute or < relative * ||F(u_0)||; failed on NaN or too
     // many iterations.
