@@ -83,6 +83,10 @@ namespace clothsim
     void
     assemble_tangent(unsigned int node, const VectorType &x, MatrixType &J);
 
+    // Whether objective() and residual() have Φ and its gradient at u (collective).
+    bool
+    at_cached_point(const VectorType &u) const;
+
     // ghosted = q_n + c (x - q_n), the path's point at the quadrature node's c = 2s.
     void
     set_path_point(const VectorType &x, const double c);
@@ -99,5 +103,13 @@ namespace clothsim
     VectorType              linearised_from, scratch; // ghosted, owned
     VectorType              owned_point, owned_sum;  // owned work vectors of the AVF step
     MatrixType             *first_tangent = nullptr; // the AVF tangent at the first node
+    // Φ and its gradient come from one loop (model.assemble): the last point where
+    // objective() or residual() assembled them (owned), and both, so that the other
+    // call at the same point takes them instead of a loop of its own (NOX asks for the
+    // residual at the line search's accepted iterate, and the line search for Φ at the
+    // iterate whose residual NOX has).
+    VectorType cached_point, cached_gradient;
+    double     cached_energy = 0.;
+    bool       cached        = false;
   };
 } // namespace clothsim
