@@ -177,7 +177,10 @@ namespace clothsim
       "'single', refined in double precision until the residual is below 'Relative "
       "tolerance' (each refinement step counts as one linear iteration). Single "
       "takes less time on large meshes (swinging sheet: factorisation 1.2 times "
-      "faster at 6,561 vertices, 1.4 times at 103,041) and half the factors' memory.");
+      "faster at 6,561 vertices, 1.4 times at 103,041) and half the factors' memory. "
+      "On one MPI rank, single precision and a positive definite tangent use "
+      "clothsim's own supernodal Cholesky instead of MUMPS' factorisation (MUMPS "
+      "orders): 2.5 times faster at 6,561 vertices.");
     prm.declare_entry(
       "Preconditioner",
       "amg",

@@ -289,14 +289,29 @@ namespace clothsim
   }
 
 
+  const std::vector<unsigned int> &
+  TimeStepper::local_displacement_dofs() const
+  {
+    if (displacement_local.empty())
+      {
+        const IndexSet owned = u_n.locally_owned_elements();
+        for (const types::global_dof_index i : model.displacement_dofs())
+          displacement_local.push_back(owned.index_within_set(i));
+      }
+    return displacement_local;
+  }
+
+
   double
   TimeStepper::kinetic_norm(const VectorType &x) const
   {
-    double sum = 0., mass = 0.;
-    for (const types::global_dof_index i : model.displacement_dofs())
+    double        sum = 0., mass = 0.;
+    const double *m_local = masses.begin(), *x_local = x.begin(); // owned entries
+    for (const unsigned int i : local_displacement_dofs())
       {
-        sum += masses[i] * x[i] * x[i];
-        mass += masses[i];
+        const double m = m_local[i], value = x_local[i];
+        sum += m * value * value;
+        mass += m;
       }
     const MPI_Comm communicator = model.get_communicator();
     return std::sqrt(Utilities::MPI::sum(sum, communicator) /
@@ -338,13 +353,18 @@ namespace clothsim
     double     largest  = 0.;
     if (kinetic)
       difference.reinit(u_n, /*omit_zeroing_entries=*/true);
-    for (const types::global_dof_index i : model.displacement_dofs())
+    // Owned entries by local index.
+    const double *start = u_n.begin(), *velocity = v_n.begin(), *earlier = v_nm1.begin(),
+                 *solved = u.begin();
+    double *error        = kinetic ? difference.begin() : nullptr;
+    for (const unsigned int i : local_displacement_dofs())
       {
-        const double predicted = u_n[i] + dt * v_n[i] + a_weight * (v_n[i] - v_nm1[i]);
-        const double end       = midpoint ? 2. * u[i] - u_n[i] : u[i];
-        largest                = std::max(largest, std::abs(end - predicted));
+        const double predicted =
+          start[i] + dt * velocity[i] + a_weight * (velocity[i] - earlier[i]);
+        const double end = midpoint ? 2. * solved[i] - start[i] : solved[i];
+        largest          = std::max(largest, std::abs(end - predicted));
         if (kinetic)
-          difference[i] = end - predicted;
+          error[i] = end - predicted;
       }
     return {kappa * (kinetic ? kinetic_norm(difference)
                              : Utilities::MPI::max(largest, model.get_communicator())),

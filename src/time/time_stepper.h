@@ -204,7 +204,12 @@ namespace clothsim
     VectorType         u_n, v_n, u_new, v_new; // owned
     VectorType         masses;                 // owned: lumped, for the kinetic norm
     mutable VectorType difference;             // owned: scratch of error_estimate
-    VectorType         centre;                 // owned: ũ, the step's damping centre
+    // The owned displacement dofs' local indices in the owned vectors (set on first use:
+    // global indices cost a map lookup per entry).
+    mutable std::vector<unsigned int> displacement_local;
+    const std::vector<unsigned int>            &
+    local_displacement_dofs() const;
+    VectorType centre; // owned: ũ, the step's damping centre
     // BDF2: the state before u_n and the step that led from it to u_n (0: none yet).
     VectorType u_nm1, v_nm1; // owned
     double     previous_step = 0.;
