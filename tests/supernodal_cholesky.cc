@@ -4,8 +4,9 @@
 // - A "shell-like" matrix: a triangulated nx x ny grid, 3 unknowns per vertex, coupled
 //   along the edges by random symmetric 3x3 blocks, diagonally dominant (SPD), its
 //   condition number about 1e3. Single-precision factors solve it to about
-//   cond * 6e-8; three steps of iterative refinement in double to round-off. The
-//   solution does not depend on the elimination order (natural, reversed, random).
+//   cond * 6e-8; three steps of iterative refinement in double to round-off;
+//   double-precision factors to round-off at once. The solution does not depend on the
+//   elimination order (natural, reversed, random).
 // - Refactorisation with new values on the same analysis (2 A: x / 2).
 // - A matrix that is not positive definite: factorize() fails, and the object then
 //   factorises the SPD one again.
@@ -162,6 +163,15 @@ main(int argc, char **argv)
                   what + ": relative error after 3 refinement steps",
                   relative_error(solve(cholesky, a, b, 3), exact),
                   1e-12);
+
+      // Double-precision factors: round-off in double without refinement.
+      SupernodalCholesky in_double(/*single_precision=*/false);
+      in_double.analyse(a.n, a.rows, a.columns, *order);
+      check(out, in_double.factorize(a.values.data()), what + ", double: factorises");
+      check_below(out,
+                  what + ", double: relative error",
+                  relative_error(solve(in_double, a, b), exact),
+                  1e-13);
     }
 
   {
@@ -190,6 +200,13 @@ main(int argc, char **argv)
           cholesky.factorize(a.values.data()) &&
             relative_error(solve(cholesky, a, b, 3), exact) < 1e-12,
           "then A factorises and solves again");
+    SupernodalCholesky in_double(/*single_precision=*/false);
+    in_double.analyse(a.n, a.rows, a.columns, shuffled);
+    check(out,
+          !in_double.factorize(indefinite.values.data()) &&
+            in_double.factorize(a.values.data()) &&
+            relative_error(solve(in_double, a, b), exact) < 1e-13,
+          "double: a negative diagonal entry fails, then A factorises and solves");
   }
 
   {

@@ -336,9 +336,11 @@ namespace clothsim
       {
         if (cholesky->factorize(crs_values))
           return true;
-        last_failure = "the Cholesky factorisation met a pivot that is not positive (the "
-                       "matrix is not positive definite, or too ill-conditioned for "
-                       "single precision)";
+        last_failure =
+          std::string("the Cholesky factorisation met a pivot that is not "
+                      "positive (the matrix is not positive definite, or too "
+                      "ill-conditioned for ") +
+          (instance->single ? "single" : "double") + " precision)";
         return false;
       }
     if (!call(2, "factorisation"))
@@ -482,14 +484,14 @@ namespace clothsim
   {
     int n_ranks = 1;
     MPI_Comm_size(communicator, &n_ranks);
-    if (n_ranks != 1 || !instance->single || instance->s.sym != 1 ||
-        !matrix.StorageOptimized())
+    const bool definite = instance->visit([](auto &id) { return id.sym == 1; });
+    if (n_ranks != 1 || !definite || !matrix.StorageOptimized())
       return;
     // SYM_PERM(i): the position of row i in MUMPS' elimination order.
     std::vector<int> order(n_kept), pattern_rows(rows.size()),
       pattern_columns(rows.size());
     for (int i = 0; i < n_kept; ++i)
-      order[instance->s.sym_perm[i] - 1] = i;
+      order[instance->visit([i](auto &id) { return id.sym_perm[i]; }) - 1] = i;
     for (std::size_t k = 0; k < rows.size(); ++k)
       {
         pattern_rows[k]    = rows[k] - 1;
@@ -502,7 +504,7 @@ namespace clothsim
     for (std::size_t entry = 0; entry < upper.size(); ++entry)
       if (upper[entry])
         value_index.push_back(static_cast<int>(entry));
-    cholesky = std::make_unique<SupernodalCholesky>();
+    cholesky = std::make_unique<SupernodalCholesky>(instance->single);
     cholesky->analyse(n_kept, pattern_rows, pattern_columns, order, value_index);
   }
 } // namespace clothsim

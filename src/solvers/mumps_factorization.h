@@ -152,10 +152,10 @@ namespace clothsim
     std::unique_ptr<Epetra_Import> from_solution;
     std::string                    last_failure;
 
-    // On one rank, positive definite, single precision: MUMPS orders and analyses, and
-    // the factorisations (reading the matrix's value array in place) and solves are
-    // SupernodalCholesky's (swinging sheet, N = 81:
-    // 14 against 34 ms per factorisation, 1.4 against 4 ms per solve).
+    // On one rank and positive definite (SYM = 1): MUMPS orders and analyses, and the
+    // factorisations (reading the matrix's value array in place) and solves, in the
+    // factors' precision, are SupernodalCholesky's (swinging sheet, N = 81, single: 15
+    // against 38 ms per factorisation, 1.5 against 4 to 7 ms per solve).
     std::unique_ptr<SupernodalCholesky> cholesky;
     void
     set_up_cholesky(const Epetra_CrsMatrix &matrix);

@@ -1,58 +1,11 @@
 #include "solvers/supernodal_cholesky.h"
 
+#include "solvers/dense_kernels.h"
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
-
-// BLAS and LAPACK (OpenBLAS on Debian), single precision, column-major.
-extern "C" {
-void
-spotrf_(const char *uplo, const int *n, float *a, const int *lda, int *info);
-void
-strsm_(const char  *side,
-       const char  *uplo,
-       const char  *transa,
-       const char  *diag,
-       const int   *m,
-       const int   *n,
-       const float *alpha,
-       const float *a,
-       const int   *lda,
-       float       *b,
-       const int   *ldb);
-void
-ssyrk_(const char  *uplo,
-       const char  *trans,
-       const int   *n,
-       const int   *k,
-       const float *alpha,
-       const float *a,
-       const int   *lda,
-       const float *beta,
-       float       *c,
-       const int   *ldc);
-void
-strsv_(const char  *uplo,
-       const char  *trans,
-       const char  *diag,
-       const int   *n,
-       const float *a,
-       const int   *lda,
-       float       *x,
-       const int   *incx);
-void
-sgemv_(const char  *trans,
-       const int   *m,
-       const int   *n,
-       const float *alpha,
-       const float *a,
-       const int   *lda,
-       const float *x,
-       const int   *incx,
-       const float *beta,
-       float       *y,
-       const int   *incy);
-}
+#include <type_traits>
 
 namespace clothsim
 {
@@ -370,39 +323,62 @@ namespace clothsim
           }
         parent_map_start.push_back(static_cast<int>(parent_map.size()));
       }
-    n_factor_entries = factor_start.back();
-    factor.assign(n_factor_entries, 0.f);
-    front.assign(largest * largest, 0.f);
-    update_stack.assign(max_stack, 0.f);
-    work.assign(largest, 0.f);
-    rhs.assign(n, 0.f);
+    n_factor_entries    = factor_start.back();
+    const auto allocate = [&](auto &numeric) {
+      numeric.factor.assign(n_factor_entries, 0);
+      numeric.front.assign(largest * largest, 0);
+      numeric.update_stack.assign(max_stack, 0);
+      numeric.work.assign(largest, 0);
+      numeric.rhs.assign(n, 0);
+    };
+    if (single)
+      allocate(in_single);
+    else
+      allocate(in_double);
   }
 
 
   bool
   SupernodalCholesky::factorize(const double *values)
   {
+    return single ? factorize(in_single, values) : factorize(in_double, values);
+  }
+
+
+  void
+  SupernodalCholesky::solve(double *x)
+  {
+    if (single)
+      solve(in_single, x);
+    else
+      solve(in_double, x);
+  }
+
+
+  template <typename Number>
+  bool
+  SupernodalCholesky::factorize(Numeric<Number> &numeric, const double *values)
+  {
     const int    n_nodes = n_supernodes();
-    const float  one = 1.f, minus_one = -1.f;
-    std::int64_t top = 0; // end of the update stack
+    std::int64_t top     = 0; // end of the update stack
     for (int s = 0; s < n_nodes; ++s)
       {
         const int k = first_column[s + 1] - first_column[s],
                   r = below_start[s + 1] - below_start[s], m = k + r;
         // The front: its first k columns (m x k) in place in the factor, the rest
         // (r x r, the update for the parent) in `front`; lower triangles only.
-        float *P = factor.data() + factor_start[s];
-        float *U = front.data();
+        Number *P = numeric.factor.data() + factor_start[s];
+        Number *U = numeric.front.data();
         for (int j = 0; j < k; ++j)
           std::fill(P + static_cast<std::int64_t>(j) * m + j,
                     P + static_cast<std::int64_t>(j + 1) * m,
-                    0.f);
+                    Number(0));
         for (int j = 0; j < r; ++j)
           std::fill(U + static_cast<std::int64_t>(j) * r + j,
                     U + static_cast<std::int64_t>(j + 1) * r,
-                    0.f);
+                    Number(0));
         for (int e = entry_start[s]; e < entry_start[s + 1]; ++e)
-          P[entry_position[e]] += static_cast<float>(values[entry_index[e]]);
+          P[entry_position[e]] += static_cast<Number>(values[entry_index[e]]);
         // The children's updates are the top of the stack, in the children's order
         // (the postorder: each child's subtree has consumed its own).
         std::int64_t from = top;
@@ -415,36 +391,36 @@ namespace clothsim
         top = from;
         for (int c = child_start[s]; c < child_start[s + 1]; ++c)
           {
-            const int    child = child_list[c];
-            const int   *map   = parent_map.data() + parent_map_start[child];
-            const int    rc    = parent_map_start[child + 1] - parent_map_start[child];
-            const float *V     = update_stack.data() + from;
-            int          jj    = 0;
+            const int     child = child_list[c];
+            const int    *map   = parent_map.data() + parent_map_start[child];
+            const int     rc    = parent_map_start[child + 1] - parent_map_start[child];
+            const Number *V     = numeric.update_stack.data() + from;
+            int           jj    = 0;
             for (; jj < rc && map[jj] < k; ++jj)
               {
-                float       *column = P + static_cast<std::int64_t>(map[jj]) * m;
-                const float *v      = V + static_cast<std::int64_t>(jj) * rc;
+                Number       *column = P + static_cast<std::int64_t>(map[jj]) * m;
+                const Number *v      = V + static_cast<std::int64_t>(jj) * rc;
                 for (int ii = jj; ii < rc; ++ii)
                   column[map[ii]] += v[ii];
               }
             for (; jj < rc; ++jj)
               {
-                float       *column = U + static_cast<std::int64_t>(map[jj] - k) * r - k;
-                const float *v      = V + static_cast<std::int64_t>(jj) * rc;
+                Number       *column = U + static_cast<std::int64_t>(map[jj] - k) * r - k;
+                const Number *v      = V + static_cast<std::int64_t>(jj) * rc;
                 for (int ii = jj; ii < rc; ++ii)
                   column[map[ii]] += v[ii];
               }
             from += static_cast<std::int64_t>(rc) * rc;
           }
-        int info = 0;
-        spotrf_("L", &k, P, &m, &info);
-        if (info != 0)
+        if (!dense::cholesky(k, P, m))
           return false;
         if (r > 0)
           {
-            strsm_("R", "L", "T", "N", &r, &k, &one, P, &m, P + k, &m);
-            ssyrk_("L", "N", &r, &k, &minus_one, P + k, &m, &one, U, &r);
-            std::copy(U, U + static_cast<std::int64_t>(r) * r, update_stack.data() + top);
+            dense::right_solve_transposed(r, k, P, m, P + k, m);
+            dense::subtract_gram(r, k, P + k, m, U, r);
+            std::copy(U,
+                      U + static_cast<std::int64_t>(r) * r,
+                      numeric.update_stack.data() + top);
             top += static_cast<std::int64_t>(r) * r;
           }
       }
@@ -452,24 +428,24 @@ namespace clothsim
   }
 
 
+  template <typename Number>
   void
-  SupernodalCholesky::solve(double *x)
+  SupernodalCholesky::solve(Numeric<Number> &numeric, double *x)
   {
-    const int   n_nodes = n_supernodes();
-    const int   one     = 1;
-    const float f_one = 1.f, f_zero = 0.f, f_minus_one = -1.f;
+    const int n_nodes = n_supernodes();
+    Number   *rhs = numeric.rhs.data(), *work = numeric.work.data();
     for (int i = 0; i < n; ++i)
-      rhs[permutation[i]] = static_cast<float>(x[i]);
+      rhs[permutation[i]] = static_cast<Number>(x[i]);
     for (int s = 0; s < n_nodes; ++s)
       {
         const int k = first_column[s + 1] - first_column[s],
                   r = below_start[s + 1] - below_start[s], m = k + r;
-        const float *L  = factor.data() + factor_start[s];
-        float       *xs = rhs.data() + first_column[s];
-        strsv_("L", "N", "N", &k, L, &m, xs, &one);
+        const Number *L  = numeric.factor.data() + factor_start[s];
+        Number       *xs = rhs + first_column[s];
+        dense::triangular_solve("N", k, L, m, xs);
         if (r > 0)
           {
-            sgemv_("N", &r, &k, &f_one, L + k, &m, xs, &one, &f_zero, work.data(), &one);
+            dense::multiply("N", r, k, Number(1), L + k, m, xs, Number(0), work);
             const int *below = below_rows.data() + below_start[s];
             for (int i = 0; i < r; ++i)
               rhs[below[i]] -= work[i];
@@ -479,17 +455,16 @@ namespace clothsim
       {
         const int k = first_column[s + 1] - first_column[s],
                   r = below_start[s + 1] - below_start[s], m = k + r;
-        const float *L  = factor.data() + factor_start[s];
-        float       *xs = rhs.data() + first_column[s];
+        const Number *L  = numeric.factor.data() + factor_start[s];
+        Number       *xs = rhs + first_column[s];
         if (r > 0)
           {
             const int *below = below_rows.data() + below_start[s];
             for (int i = 0; i < r; ++i)
               work[i] = rhs[below[i]];
-            sgemv_(
-              "T", &r, &k, &f_minus_one, L + k, &m, work.data(), &one, &f_one, xs, &one);
+            dense::multiply("T", r, k, Number(-1), L + k, m, work, Number(1), xs);
           }
-        strsv_("L", "T", "N", &k, L, &m, xs, &one);
+        dense::triangular_solve("T", k, L, m, xs);
       }
     for (int i = 0; i < n; ++i)
       x[i] = rhs[permutation[i]];

@@ -1,15 +1,15 @@
 #pragma once
 
-// Sparse Cholesky factorisation A = P L Lᵀ Pᵀ in single precision, multifrontal and
-// supernodal (Duff & Reid, ACM TOMS 9, 1983; Liu, SIAM Review 34, 1992), for a sequence
-// of symmetric positive definite matrices that share one sparsity: a Newton run's
-// tangents. Everything that depends only on the sparsity is computed once by analyse():
-// the elimination tree, the supernodes (relaxed amalgamation as in CHOLMOD: Chen, Davis,
-// Hager & Rajamanickam, ACM TOMS 35, 2008), where each matrix entry lands in its front,
-// and where each child's update lands in its parent's front. factorize() then runs only
-// dense kernels (BLAS and LAPACK) and precomputed scatters: no searching, sorting or
-// allocation, which is what a general-purpose solver spends most of its time on for
-// the small fronts of a 2D mesh.
+// Sparse Cholesky factorisation A = P L Lᵀ Pᵀ in single or double precision, multifrontal
+// and supernodal (Duff & Reid, ACM TOMS 9, 1983; Liu, SIAM Review 34, 1992), for a
+// sequence of symmetric positive definite matrices that share one sparsity: a Newton
+// run's tangents. Everything that depends only on the sparsity is computed once by
+// analyse(): the elimination tree, the supernodes (relaxed amalgamation as in CHOLMOD:
+// Chen, Davis, Hager & Rajamanickam, ACM TOMS 35, 2008), where each matrix entry lands in
+// its front, and where each child's update lands in its parent's front. factorize() then
+// runs only dense kernels (BLAS and LAPACK) and precomputed scatters: no searching,
+// sorting or allocation, which is what a general-purpose solver spends most of its time
+// on for the small fronts of a 2D mesh.
 
 #include <cstdint>
 #include <vector>
@@ -19,6 +19,11 @@ namespace clothsim
   class SupernodalCholesky
   {
   public:
+    // The factors' precision (the matrix is given in double either way).
+    explicit SupernodalCholesky(bool single_precision = true)
+      : single(single_precision)
+    {}
+
     // The pattern of the upper triangle (0-based, rows[k] <= columns[k], each entry
     // once), and the elimination order: order[p] is the row eliminated p-th (a
     // fill-reducing permutation, e.g. from MUMPS' analysis). Entry k's value will be
@@ -33,7 +38,7 @@ namespace clothsim
 
     // Factorises the matrix whose upper-triangle entries are in `values` (where
     // analyse() placed them). Returns false if a pivot is not positive (the matrix is not
-    // positive definite, or too ill-conditioned for single precision).
+    // positive definite, or too ill-conditioned for the factors' precision).
     bool
     factorize(const double *values);
 
@@ -77,13 +82,28 @@ namespace clothsim
     std::vector<int>          entry_index;
     std::vector<std::int64_t> entry_position;
 
-    std::vector<float> factor;
-    std::vector<float> front;        // the largest front, m x m
-    std::vector<float> update_stack; // children's updates waiting for their parent
-    std::vector<float> work;         // solve
-    std::vector<float> rhs;          // solve, permuted
-    double             n_operations     = 0.;
-    std::int64_t       n_factor_entries = 0;
-    std::int64_t       max_stack        = 0;
+    // The numeric part in the factors' precision.
+    template <typename Number>
+    struct Numeric
+    {
+      std::vector<Number> factor;
+      std::vector<Number> front;        // the largest update, r x r
+      std::vector<Number> update_stack; // children's updates waiting for their parent
+      std::vector<Number> work;         // solve
+      std::vector<Number> rhs;          // solve, permuted
+    };
+    template <typename Number>
+    bool
+    factorize(Numeric<Number> &numeric, const double *values);
+    template <typename Number>
+    void
+    solve(Numeric<Number> &numeric, double *x);
+
+    bool            single;
+    Numeric<float>  in_single;
+    Numeric<double> in_double;
+    double          n_operations     = 0.;
+    std::int64_t    n_factor_entries = 0;
+    std::int64_t    max_stack        = 0;
   };
 } // namespace clothsim
