@@ -109,8 +109,9 @@ namespace clothsim
     bool
     solve_once(const Epetra_Vector &b, Epetra_Vector &x);
 
-    static constexpr unsigned int max_refinements  = 10;
-    unsigned int                  last_refinements = 0;
+    std::unique_ptr<Epetra_Vector> residual_work, correction_work; // refinement
+    static constexpr unsigned int  max_refinements  = 10;
+    unsigned int                   last_refinements = 0;
 
     MPI_Comm communicator;
     struct Instance; // MUMPS' DMUMPS_STRUC_C or SMUMPS_STRUC_C
