@@ -296,10 +296,19 @@ namespace clothsim
     parent_map_start.assign(1, 0);
     parent_map.clear();
     factor_start.assign(1, 0);
-    std::int64_t largest = 0, stack = 0;
-    max_stack    = 0;
-    n_operations = 0.;
-    std::vector<std::int64_t> pushed;
+    // Two stacks of waiting updates: a supernode's update goes on the stack of its
+    // depth's parity, where it is assembled and computed in place, and its children's
+    // are read from the other one. Each stack stays last in, first out (in the
+    // postorder, a node's subtree has consumed everything it pushed but the node's
+    // children's updates), and no update is copied.
+    parity.assign(n_nodes, 0);
+    for (int s = n_nodes - 1; s >= 0; --s)
+      if (below_start[s + 1] > below_start[s])
+        parity[s] = 1 - parity[supernode_of[below_rows[below_start[s]]]];
+    std::int64_t largest = 0, stack[2] = {0, 0};
+    max_stack[0] = max_stack[1] = 0;
+    n_operations                = 0.;
+    std::vector<std::int64_t> pushed[2];
     for (int s = 0; s < n_nodes; ++s)
       {
         const std::int64_t k = first_column[s + 1] - first_column[s],
@@ -307,27 +316,28 @@ namespace clothsim
         largest = std::max(largest, m);
         factor_start.push_back(factor_start.back() + m * k);
         n_operations += k * k * k / 3. + k * k * r + k * r * r;
+        const int side = parity[s];
         for (int c = child_start[s]; c < child_start[s + 1]; ++c)
           {
-            stack -= pushed.back();
-            pushed.pop_back();
+            stack[1 - side] -= pushed[1 - side].back();
+            pushed[1 - side].pop_back();
           }
         if (r > 0)
           {
             const int p = supernode_of[below_rows[below_start[s]]];
             for (int i = below_start[s]; i < below_start[s + 1]; ++i)
               parent_map.push_back(local_row(p, below_rows[i]));
-            pushed.push_back(r * r);
-            stack += r * r;
-            max_stack = std::max(max_stack, stack);
+            pushed[side].push_back(r * r);
+            stack[side] += r * r;
+            max_stack[side] = std::max(max_stack[side], stack[side]);
           }
         parent_map_start.push_back(static_cast<int>(parent_map.size()));
       }
     n_factor_entries    = factor_start.back();
     const auto allocate = [&](auto &numeric) {
       numeric.factor.assign(n_factor_entries, 0);
-      numeric.front.assign(largest * largest, 0);
-      numeric.update_stack.assign(max_stack, 0);
+      numeric.stacks[0].assign(max_stack[0], 0);
+      numeric.stacks[1].assign(max_stack[1], 0);
       numeric.work.assign(largest, 0);
       numeric.rhs.assign(n, 0);
     };
@@ -360,15 +370,16 @@ namespace clothsim
   SupernodalCholesky::factorize(Numeric<Number> &numeric, const double *values)
   {
     const int    n_nodes = n_supernodes();
-    std::int64_t top     = 0; // end of the update stack
+    std::int64_t top[2]  = {0, 0}; // ends of the update stacks
     for (int s = 0; s < n_nodes; ++s)
       {
         const int k = first_column[s + 1] - first_column[s],
                   r = below_start[s + 1] - below_start[s], m = k + r;
         // The front: its first k columns (m x k) in place in the factor, the rest
-        // (r x r, the update for the parent) in `front`; lower triangles only.
-        Number *P = numeric.factor.data() + factor_start[s];
-        Number *U = numeric.front.data();
+        // (r x r, the update for the parent) in place on its stack; lower triangles.
+        const int side = parity[s];
+        Number   *P    = numeric.factor.data() + factor_start[s];
+        Number   *U    = numeric.stacks[side].data() + top[side];
         for (int j = 0; j < k; ++j)
           std::fill(P + static_cast<std::int64_t>(j) * m + j,
                     P + static_cast<std::int64_t>(j + 1) * m,
@@ -379,22 +390,22 @@ namespace clothsim
                     Number(0));
         for (int e = entry_start[s]; e < entry_start[s + 1]; ++e)
           P[entry_position[e]] += static_cast<Number>(values[entry_index[e]]);
-        // The children's updates are the top of the stack, in the children's order
-        // (the postorder: each child's subtree has consumed its own).
-        std::int64_t from = top;
+        // The children's updates are the top of the other stack, in the children's
+        // order.
+        std::int64_t from = top[1 - side];
         for (int c = child_start[s]; c < child_start[s + 1]; ++c)
           {
             const std::int64_t rc =
               below_start[child_list[c] + 1] - below_start[child_list[c]];
             from -= rc * rc;
           }
-        top = from;
+        top[1 - side] = from;
         for (int c = child_start[s]; c < child_start[s + 1]; ++c)
           {
             const int     child = child_list[c];
             const int    *map   = parent_map.data() + parent_map_start[child];
             const int     rc    = parent_map_start[child + 1] - parent_map_start[child];
-            const Number *V     = numeric.update_stack.data() + from;
+            const Number *V     = numeric.stacks[1 - side].data() + from;
             int           jj    = 0;
             for (; jj < rc && map[jj] < k; ++jj)
               {
@@ -418,10 +429,7 @@ namespace clothsim
           {
             dense::right_solve_transposed(r, k, P, m, P + k, m);
             dense::subtract_gram(r, k, P + k, m, U, r);
-            std::copy(U,
-                      U + static_cast<std::int64_t>(r) * r,
-                      numeric.update_stack.data() + top);
-            top += static_cast<std::int64_t>(r) * r;
+            top[side] += static_cast<std::int64_t>(r) * r;
           }
       }
     return true;

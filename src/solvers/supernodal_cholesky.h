@@ -87,10 +87,10 @@ namespace clothsim
     struct Numeric
     {
       std::vector<Number> factor;
-      std::vector<Number> front;        // the largest update, r x r
-      std::vector<Number> update_stack; // children's updates waiting for their parent
-      std::vector<Number> work;         // solve
-      std::vector<Number> rhs;          // solve, permuted
+      std::vector<Number>
+        stacks[2];              // updates waiting for their parent (by depth's parity)
+      std::vector<Number> work; // solve
+      std::vector<Number> rhs;  // solve, permuted
     };
     template <typename Number>
     bool
@@ -99,11 +99,12 @@ namespace clothsim
     void
     solve(Numeric<Number> &numeric, double *x);
 
-    bool            single;
-    Numeric<float>  in_single;
-    Numeric<double> in_double;
-    double          n_operations     = 0.;
-    std::int64_t    n_factor_entries = 0;
-    std::int64_t    max_stack        = 0;
+    bool              single;
+    Numeric<float>    in_single;
+    Numeric<double>   in_double;
+    double            n_operations     = 0.;
+    std::int64_t      n_factor_entries = 0;
+    std::int64_t      max_stack[2]     = {0, 0};
+    std::vector<char> parity; // of each supernode's depth in the tree
   };
 } // namespace clothsim
