@@ -157,6 +157,7 @@ namespace clothsim
   bool
   MumpsFactorization::set_up_rows(const Epetra_CrsMatrix &matrix)
   {
+    cholesky.reset(); // a new sparsity: set up again after MUMPS' analysis
     kept_rows.clear();
     decoupled_rows.clear();
     int n_ranks = 1;
