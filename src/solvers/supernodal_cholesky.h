@@ -87,8 +87,8 @@ namespace clothsim
     struct Numeric
     {
       std::vector<Number> factor;
-      std::vector<Number>
-        stacks[2];              // updates waiting for their parent (by depth's parity)
+      // Updates waiting for their parent, by the parity of their supernode's depth.
+      std::vector<Number> stacks[2];
       std::vector<Number> work; // solve
       std::vector<Number> rhs;  // solve, permuted
     };
