@@ -20,15 +20,16 @@ main(int argc, char **argv)
 {
   Environment                 env(argc, argv);
   ConditionalOStream         &pcout  = env.pcout;
-  const std::vector<Triangle> square = {{Point<2>(0, 0), Point<2>(1, 0), Point<2>(1, 1)},
-                                        {Point<2>(0, 0), Point<2>(1, 1), Point<2>(0, 1)}};
+  const std::vector<Triangle> square = {
+    Triangle{{Point<2>(0, 0), Point<2>(1, 0), Point<2>(1, 1)}},
+    Triangle{{Point<2>(0, 0), Point<2>(1, 1), Point<2>(0, 1)}}};
   bool passed = check_near(pcout, "unit square", mesh::projected_area(square), 1., 1e-12);
 
   std::vector<Triangle> two = square;
   for (const Triangle &t : square)
-    two.push_back({Point<2>(t[0][0] + 0.5, t[0][1]),
-                   Point<2>(t[1][0] + 0.5, t[1][1]),
-                   Point<2>(t[2][0] + 0.5, t[2][1])});
+    two.push_back(Triangle{{Point<2>(t[0][0] + 0.5, t[0][1]),
+                            Point<2>(t[1][0] + 0.5, t[1][1]),
+                            Point<2>(t[2][0] + 0.5, t[2][1])}});
   passed &= check_near(
     pcout, "two squares overlapping by half", mesh::projected_area(two), 1.5, 1e-12);
 
@@ -40,14 +41,14 @@ main(int argc, char **argv)
       const Point<2> a(r * std::cos(2. * pi * k / n), r * std::sin(2. * pi * k / n));
       const Point<2> b(r * std::cos(2. * pi * (k + 1) / n),
                        r * std::sin(2. * pi * (k + 1) / n));
-      fan.push_back({Point<2>(), a, b});
+      fan.push_back(Triangle{{Point<2>(), a, b}});
       // n/2 + k has the parity of k (n/2 even): the odd slots go onto the even ones.
       const Point<2> c(r * std::cos(2. * pi * (k + n / 2 + 1) / n),
                        r * std::sin(2. * pi * (k + n / 2 + 1) / n));
       const Point<2> d(r * std::cos(2. * pi * (k + n / 2 + 2) / n),
                        r * std::sin(2. * pi * (k + n / 2 + 2) / n));
-      folded.push_back(k % 2 == 0 ? Triangle{Point<2>(), a, b}
-                                  : Triangle{Point<2>(), c, d});
+      folded.push_back(k % 2 == 0 ? Triangle{{Point<2>(), a, b}}
+                                  : Triangle{{Point<2>(), c, d}});
     }
   const double polygon = 0.5 * n * r * r * std::sin(2. * pi / n);
   passed &= check_near(
