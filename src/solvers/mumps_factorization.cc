@@ -1,5 +1,6 @@
 #include "solvers/mumps_factorization.h"
 
+#include "solvers/fill_reducing_order.h"
 #include "solvers/supernodal_cholesky.h"
 
 #include <dmumps_c.h>
@@ -94,6 +95,7 @@ namespace clothsim
                                          const Precision precision)
     : communicator(communicator)
     , instance(std::make_unique<Instance>())
+    , requested_ordering(ordering)
   {
     instance->single = precision == Precision::single_refined;
     instance->visit([&](auto &id) {
@@ -321,11 +323,16 @@ namespace clothsim
     if (first)
       {
         instance->visit([&](auto &id) {
-          id.n       = n_kept;
-          id.nnz_loc = static_cast<MUMPS_INT8>(rows.size());
-          id.irn_loc = rows.data();
-          id.jcn_loc = columns.data();
+          id.n            = n_kept;
+          id.nnz_loc      = static_cast<MUMPS_INT8>(rows.size());
+          id.irn_loc      = rows.data();
+          id.jcn_loc      = columns.data();
+          id.icntl[at(7)] = requested_ordering;
         });
+        int n_ranks = 1;
+        MPI_Comm_size(communicator, &n_ranks);
+        if (n_ranks > 1 && !order_on_host())
+          return false;
         if (!call(1, "analysis"))
           return false;
         analysed = true;
@@ -471,6 +478,83 @@ namespace clothsim
       return false;
     for (std::size_t i = 0; i < kept_rows.size(); ++i)
       x[kept_rows[i]] = kept_solution[i];
+    return true;
+  }
+
+
+  bool
+  MumpsFactorization::order_on_host()
+  {
+    int rank = 0, n_ranks = 1;
+    MPI_Comm_rank(communicator, &rank);
+    MPI_Comm_size(communicator, &n_ranks);
+    // The upper triangle's pattern (1-based new indices) on rank 0.
+    const int        count = static_cast<int>(rows.size());
+    std::vector<int> counts(n_ranks), offsets(n_ranks + 1, 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, communicator);
+    for (int r = 0; r < n_ranks; ++r)
+      offsets[r + 1] = offsets[r] + counts[r];
+    std::vector<int> all_rows, all_columns;
+    for (auto [local, all] :
+         {std::pair(&rows, &all_rows), std::pair(&columns, &all_columns)})
+      {
+        all->resize(rank == 0 ? offsets.back() : 0);
+        MPI_Gatherv(local->data(),
+                    count,
+                    MPI_INT,
+                    all->data(),
+                    counts.data(),
+                    offsets.data(),
+                    MPI_INT,
+                    0,
+                    communicator);
+      }
+    int ordered = 1;
+    if (rank == 0)
+      {
+        // Rows with an entry off the diagonal, numbered 0, 1, ... among themselves.
+        std::vector<int> reduced(n_kept, -1);
+        for (std::size_t k = 0; k < all_rows.size(); ++k)
+          if (all_rows[k] != all_columns[k])
+            reduced[all_rows[k] - 1] = reduced[all_columns[k] - 1] = 0;
+        int n_reduced = 0;
+        for (int &index : reduced)
+          if (index == 0)
+            index = n_reduced++;
+        std::vector<int> reduced_rows, reduced_columns;
+        for (std::size_t k = 0; k < all_rows.size(); ++k)
+          if (reduced[all_rows[k] - 1] >= 0)
+            {
+              reduced_rows.push_back(reduced[all_rows[k] - 1]);
+              reduced_columns.push_back(reduced[all_columns[k] - 1]);
+            }
+        const auto order = fill_reducing_order(n_reduced,
+                                               reduced_rows,
+                                               reduced_columns,
+                                               requested_ordering);
+        ordered          = order.has_value() ? 1 : 0;
+        if (order)
+          {
+            // PERM_IN(i): row i's 1-based position in the order; diagonal-only rows last.
+            std::vector<int> position(n_reduced);
+            for (int p = 0; p < n_reduced; ++p)
+              position[(*order)[p]] = p;
+            host_order.resize(n_kept);
+            int last = n_reduced;
+            for (int i = 0; i < n_kept; ++i)
+              host_order[i] = (reduced[i] >= 0 ? position[reduced[i]] : last++) + 1;
+          }
+      }
+    MPI_Bcast(&ordered, 1, MPI_INT, 0, communicator);
+    if (ordered == 0)
+      {
+        last_failure = "MUMPS' analysis failed to order the matrix on rank 0";
+        return false;
+      }
+    instance->visit([&](auto &id) {
+      id.icntl[at(7)] = 1; // the order given in PERM_IN (read on the host)
+      id.perm_in      = host_order.data();
+    });
     return true;
   }
 
