@@ -16,7 +16,7 @@
 #   lin/newton      linear iterations per Newton iteration
 #   ranks           MPI ranks of the run (mpirun -np, for more than one)
 #   steady_us       us/vtx-step over the steps after the first, whose wall time holds the
-#                   one-time work (the direct solver's sequential analysis: 21 s at N = 321)
+#                   one-time work (the direct solver's analysis: about 3 s at N = 321)
 #   steady_vs_N0    steady_us over the same model's at the smallest N (same ranks)
 #   fem/ms          (fem rows) the fem cost per vertex-step over the mass-spring one
 #                   (same N and ranks)
@@ -26,7 +26,7 @@
 #                   and model (needs 1 in --ranks)
 #   it_speedup      (runs on several ranks) the same per Newton iteration of the steps
 #                   after the first, which holds one-time work (the direct solver's
-#                   sequential analysis: 21 s at N = 321) that a long run amortises
+#                   analysis: about 3 s at N = 321) that a long run amortises
 #   status          ok, or FAILED with the time the run reached
 # A run that fails ends the benchmark: the rows measured so far (the failed run's from
 # what it wrote, its iteration counts from its accepted steps only, marked *) are
