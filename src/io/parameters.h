@@ -272,6 +272,7 @@ namespace clothsim
     bool         amg_reuse_aggregates;
     unsigned int amg_coarse_size;
     double       amg_chebyshev_range;
+    std::string  amg_smoother; // "chebyshev", "block gauss-seidel" (finest level)
 
     static void
     declare_parameters(ParameterHandler &prm);

@@ -143,6 +143,17 @@ namespace clothsim
         ml_parameters.set("smoother: Chebyshev alpha", parameters.amg_chebyshev_range);
         ml_parameters.set("coarse: max size",
                           static_cast<int>(parameters.amg_coarse_size));
+        if (parameters.amg_smoother == "block gauss-seidel")
+          {
+            // Each vertex's three displacements relaxed together, in whatever frame its
+            // surface turns to. Only on the finest level: the coarser ones hold as many
+            // unknowns per aggregate as the null space has modes, and ML's blocks there
+            // would still be of 3.
+            ml_parameters.set("smoother: type (level 0)",
+                              std::string("symmetric block Gauss-Seidel"));
+            ml_parameters.set("smoother: sweeps (level 0)",
+                              static_cast<int>(parameters.amg_smoother_sweeps));
+          }
         if (block_mode)
           {
             if (!block_preconditioner)
