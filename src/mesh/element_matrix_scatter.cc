@@ -62,10 +62,27 @@ namespace clothsim::mesh
                             const FullMatrix<double>                   &cell_matrix,
                             const AffineConstraints<double>            &constraints)
   {
+    AssertDimension(cell_matrix.m(), dofs.size());
+    AssertDimension(cell_matrix.n(), dofs.size());
+    return add(element, dofs, &cell_matrix(0, 0), cell_matrix.n(), constraints);
+  }
+
+
+  bool
+  ElementMatrixScatter::add(const unsigned int                          element,
+                            const std::vector<types::global_dof_index> &dofs,
+                            const double                               *values,
+                            const unsigned int                          row_stride,
+                            const AffineConstraints<double>            &constraints)
+  {
     AssertDimension(dofs.size(), n_dofs);
-    for (const types::global_dof_index dof : dofs)
-      if (constraints.is_constrained(dof))
-        return false;
+    Assert(row_stride >= n_dofs, ExcInternalError());
+    if (constraints_id != &constraints)
+      {
+        // Another constraint set: which elements touch a constrained dof may differ.
+        constraints_id = &constraints;
+        status.assign(status.size(), Status::unknown);
+      }
     int *const           rows     = &local_rows[std::size_t(element) * n_dofs];
     std::uint16_t *const position = &positions[std::size_t(element) * n_dofs * n_dofs];
     if (status[element] == Status::unknown)
@@ -73,14 +90,16 @@ namespace clothsim::mesh
         // Find the entries once: local row, and the column's place in that row.
         const auto &crs = *static_cast<const Epetra_CrsMatrix *>(matrix_id);
         status[element] = Status::direct;
+        for (const types::global_dof_index dof : dofs)
+          if (constraints.is_constrained(dof))
+            status[element] = Status::other;
         for (unsigned int i = 0; i < n_dofs && status[element] == Status::direct; ++i)
           {
             rows[i]           = crs.RowMap().LID(static_cast<int>(dofs[i]));
             int     n_entries = 0;
-            double *values    = nullptr;
+            double *row       = nullptr;
             int    *columns   = nullptr;
-            if (rows[i] < 0 ||
-                crs.ExtractMyRowView(rows[i], n_entries, values, columns) != 0)
+            if (rows[i] < 0 || crs.ExtractMyRowView(rows[i], n_entries, row, columns) != 0)
               {
                 status[element] = Status::other;
                 break;
@@ -105,9 +124,11 @@ namespace clothsim::mesh
       return false;
     for (unsigned int i = 0; i < n_dofs; ++i)
       {
-        double *const values = row_values[rows[i]];
+        double *const        row_of_matrix = row_values[rows[i]];
+        const double *const  row_of_cell   = values + std::size_t(i) * row_stride;
+        const std::uint16_t *place         = position + i * n_dofs;
         for (unsigned int j = 0; j < n_dofs; ++j)
-          values[position[i * n_dofs + j]] += cell_matrix(i, j);
+          row_of_matrix[place[j]] += row_of_cell[j];
       }
     return true;
   }

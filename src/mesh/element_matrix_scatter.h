@@ -44,11 +44,22 @@ namespace clothsim::mesh
     }
     // Adds `cell_matrix` of element `element` (dofs `dofs`) to the matrix, if all its
     // dofs are rows of this rank and none is constrained; returns false otherwise (the
-    // matrix is then unchanged).
+    // matrix is then unchanged). Which dofs are constrained is read once per element and
+    // matrix: `constraints` must be the same set at every call between two start()s
+    // that find positions again.
     bool
     add(unsigned int                                element,
         const std::vector<types::global_dof_index> &dofs,
         const FullMatrix<double>                   &cell_matrix,
+        const AffineConstraints<double>            &constraints);
+
+    // The same for an element matrix stored row by row, entry (i, j) at
+    // values[i * row_stride + j] (row_stride >= the number of dofs).
+    bool
+    add(unsigned int                                element,
+        const std::vector<types::global_dof_index> &dofs,
+        const double                               *values,
+        unsigned int                                row_stride,
         const AffineConstraints<double>            &constraints);
 
     // Adds `value` to the diagonal entry of each of `dofs` (all rows of this rank) by
@@ -70,6 +81,7 @@ namespace clothsim::mesh
     static inline unsigned long generation = 0;
     unsigned long               built_at   = 0;
     const void                 *matrix_id  = nullptr;
+    const void                 *constraints_id = nullptr;
     int                         n_nonzeros = -1;
     unsigned int                n_dofs     = 0;
     // Per element: whether it can be added directly; its rows (local indices) and the

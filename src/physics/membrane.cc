@@ -155,38 +155,46 @@ namespace clothsim::physics
         const Tensor<2, 2> S_geo =
           std::isinf(stress_floor) ? S : clamp_below(S, -stress_floor);
 
-        // Blocks H_ac = d²W/da_a da_c (3x3) for a, c in {1, 2}.
-        Tensor<2, 3> H[2][2];
-        for (unsigned int a = 0; a < 2; ++a)
-          for (unsigned int cc = 0; cc < 2; ++cc)
-            {
-              Tensor<2, 3> block;
-              for (unsigned int b = 0; b < 2; ++b)
-                for (unsigned int d = 0; d < 2; ++d)
-                  {
-                    const double C_abcd = C[a][b][cc][d];
-                    if (C_abcd != 0.)
-                      block += C_abcd * outer_product(basis.a[b], basis.a[d]);
-                  }
+        // Blocks H_ac = d²W/da_a da_c = |T̄| (Σ_bd C^abcd a_b ⊗ a_d + S^ac I) (3x3) for
+        // a, c in {1, 2}; H_21 = H_12ᵀ (C^abcd = C^cdab). With v_d = Σ_b C^abcd a_b,
+        // Σ_bd C^abcd a_b ⊗ a_d = Σ_d v_d ⊗ a_d.
+        double     H[3][3][3]; // H_11, H_12, H_22
+        const int  pairs[3][2] = {{0, 0}, {0, 1}, {1, 1}};
+        const auto a_b         = [&basis](const unsigned int b, const unsigned int i) {
+          return basis.a[b][i];
+        };
+        for (unsigned int p = 0; p < 3; ++p)
+          {
+            const unsigned int a = pairs[p][0], cc = pairs[p][1];
+            double             v[2][3];
+            for (unsigned int d = 0; d < 2; ++d)
               for (unsigned int i = 0; i < 3; ++i)
-                block[i][i] += S_geo[a][cc];
-              H[a][cc] = A * block;
-            }
+                v[d][i] = C[a][0][cc][d] * a_b(0, i) + C[a][1][cc][d] * a_b(1, i);
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                H[p][i][j] =
+                  A * (v[0][i] * a_b(0, j) + v[1][i] * a_b(1, j) + (i == j ? S_geo[a][cc] : 0.));
+          }
 
-        // Chain rule through a_1 = x1 - x0, a_2 = x2 - x0: vertex v has weights w_v on
-        // (a_1, a_2): w_0 = (-1, -1), w_1 = (1, 0), w_2 = (0, 1).
-        static constexpr double w[3][2] = {{-1., -1.}, {1., 0.}, {0., 1.}};
-        for (unsigned int v = 0; v < 3; ++v)
-          for (unsigned int u = 0; u < 3; ++u)
+        // Chain rule through a_1 = x1 - x0, a_2 = x2 - x0 (vertex weights w_0 = (-1,
+        // -1), w_1 = (1, 0), w_2 = (0, 1)): K_11 = H_11, K_12 = H_12, K_22 = H_22,
+        // K_10 = -(H_11 + H_12), K_20 = -(H_21 + H_22), K_00 = H_11 + H_12 + H_21 + H_22,
+        // and K_uv = K_vuᵀ.
+        ElementMatrix &K = *hessian;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
             {
-              Tensor<2, 3> block;
-              for (unsigned int a = 0; a < 2; ++a)
-                for (unsigned int cc = 0; cc < 2; ++cc)
-                  if (w[v][a] * w[u][cc] != 0.)
-                    block += (w[v][a] * w[u][cc]) * H[a][cc];
-              for (unsigned int i = 0; i < 3; ++i)
-                for (unsigned int j = 0; j < 3; ++j)
-                  (*hessian)[3 * v + i][3 * u + j] = block[i][j];
+              const double h11 = H[0][i][j], h12 = H[1][i][j], h21 = H[1][j][i],
+                           h22 = H[2][i][j];
+              K[3 + i][3 + j] = h11;
+              K[3 + i][6 + j] = h12;
+              K[6 + i][3 + j] = h21;
+              K[6 + i][6 + j] = h22;
+              K[3 + i][j]     = -(h11 + h12);
+              K[6 + i][j]     = -(h21 + h22);
+              K[j][3 + i]     = -(h11 + h12);
+              K[j][6 + i]     = -(h21 + h22);
+              K[i][j]         = h11 + h12 + h21 + h22;
             }
       }
     return A * s.energy_density;

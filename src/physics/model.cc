@@ -252,11 +252,14 @@ namespace clothsim::physics
           }
         if (hessian != nullptr)
           {
-            for (unsigned int i = 0; i < n_local; ++i)
-              for (unsigned int j = 0; j < n_local; ++j)
-                cell_matrix(i, j) = H[i][j];
-            if (!hessian_scatter.add(state.index, dof_vector, cell_matrix, constraints))
-              constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
+            if (!hessian_scatter.add(
+                  state.index, dof_vector, &H[0][0], H[0].size(), constraints))
+              {
+                for (unsigned int i = 0; i < n_local; ++i)
+                  for (unsigned int j = 0; j < n_local; ++j)
+                    cell_matrix(i, j) = H[i][j];
+                constraints.distribute_local_to_global(cell_matrix, dof_vector, *hessian);
+              }
           }
       },
       hessian != nullptr ? step.linearised_from : nullptr);
