@@ -352,7 +352,8 @@ namespace clothsim::physics
     // h_i and φ_i with their first and (if a Hessian is wanted) second derivatives in
     // the 9 coordinates.
     std::array<double, 3>                h, phi;
-    std::array<std::array<double, 9>, 3> dh, dphi;
+    std::array<std::array<double, 6>, 3> d_altitude, d_tilt; // in a = (a_1, a_2)
+    std::array<std::array<double, 9>, 3> dh, dphi;            // in x (exact Hessian only)
     // Second derivatives: written (every entry) and read only with the exact Hessian, so
     // not zeroed here (3.9 kB per triangle, on every gradient).
     std::array<std::array<std::array<double, 9>, 9>, 3> ddh, ddphi;
@@ -380,7 +381,6 @@ namespace clothsim::physics
       }
     if (exact_hessian)
       {
-        std::array<double, 6> d6_h, d6_phi;
         using Inner = Sacado::Fad::SFad<double, 6>;
         using Outer = Sacado::Fad::SFad<Inner, 6>;
         std::array<Outer, 9> xs;
@@ -400,8 +400,8 @@ namespace clothsim::physics
             phi[i] = tilt[i].val().val();
             for (unsigned int j = 0; j < 6; ++j)
               {
-                d6_h[j]   = altitude[i].dx(j).val();
-                d6_phi[j] = tilt[i].dx(j).val();
+                d_altitude[i][j] = altitude[i].dx(j).val();
+                d_tilt[i][j]     = tilt[i].dx(j).val();
                 for (unsigned int k = 0; k < 6; ++k)
                   {
                     dd6_h[j][k]   = altitude[i].dx(j).dx(k);
@@ -410,8 +410,8 @@ namespace clothsim::physics
                 to_vertices(dd6_h[j], half_h[j]);
                 to_vertices(dd6_phi[j], half_phi[j]);
               }
-            to_vertices(d6_h, dh[i]);
-            to_vertices(d6_phi, dphi[i]);
+            to_vertices(d_altitude[i], dh[i]);
+            to_vertices(d_tilt[i], dphi[i]);
             // Second derivatives: the same map on both sides.
             for (unsigned int k = 0; k < 9; ++k)
               {
@@ -433,28 +433,20 @@ namespace clothsim::physics
           }
       }
     else
-      {
-        std::array<std::array<double, 6>, 3> d_altitude, d_tilt;
-        edge_geometry_gradient(a, directors.reference, h, phi, d_altitude, d_tilt);
-        for (unsigned int i = 0; i < 3; ++i)
-          {
-            to_vertices(d_altitude[i], dh[i]);
-            to_vertices(d_tilt[i], dphi[i]);
-          }
-      }
+      edge_geometry_gradient(a, directors.reference, h, phi, d_altitude, d_tilt);
 
-    // II_i = 2 h_i f(δ_i) and its gradient in the 12 unknowns.
-    std::array<double, 3>                 II, II_minus_rest;
+    // II_i = 2 h_i f(δ_i) and its gradient in a and in ψ_i.
+    std::array<double, 3>                 II, II_minus_rest, dII_psi;
     std::array<DirectorFunctionValues, 3> f;
-    std::array<BendingVector, 3>          dII{};
+    std::array<std::array<double, 6>, 3>  dII;
     for (unsigned int i = 0; i < 3; ++i)
       {
         f[i]  = evaluate(material.director_function, phi[i] + directors.sign[i] * psi[i]);
         II[i] = 2. * h[i] * f[i].value;
         II_minus_rest[i] = II[i] - rest.rest_edge_curvature[i];
-        for (unsigned int j = 0; j < 9; ++j)
-          dII[i][j] = 2. * (f[i].value * dh[i][j] + h[i] * f[i].first * dphi[i][j]);
-        dII[i][9 + i] = 2. * h[i] * f[i].first * directors.sign[i];
+        for (unsigned int j = 0; j < 6; ++j)
+          dII[i][j] = 2. * (f[i].value * d_altitude[i][j] + h[i] * f[i].first * d_tilt[i][j]);
+        dII_psi[i] = 2. * h[i] * f[i].first * directors.sign[i];
       }
 
     // g = C (II - ĪI): the work-conjugate of each edge curvature.
@@ -467,34 +459,50 @@ namespace clothsim::physics
         energy += 0.5 * II_minus_rest[k] * g[k];
       }
 
-    gradient.fill(0.);
+    std::array<double, 6> g_a{};
     for (unsigned int i = 0; i < 3; ++i)
-      for (unsigned int j = 0; j < 12; ++j)
-        gradient[j] += g[i] * dII[i][j];
+      for (unsigned int j = 0; j < 6; ++j)
+        g_a[j] += g[i] * dII[i][j];
+    std::array<double, 9> g_x;
+    to_vertices(g_a, g_x);
+    for (unsigned int j = 0; j < 9; ++j)
+      gradient[j] = g_x[j];
+    for (unsigned int i = 0; i < 3; ++i)
+      gradient[9 + i] = g[i] * dII_psi[i];
 
     if (hessian == nullptr)
       return energy;
 
-    // Gauss–Newton part Σ_ik C_ik ∇II_i ∇II_kᵀ, symmetric (C is). ∇II_i has one angle
-    // entry, ∂II_i/∂ψ_i: with q_k = Σ_i C_ki ∇II_i (positions),
-    //   H_xx = Σ_k ∇II_k q_kᵀ,  H_xψ_k = q_k ∂II_k/∂ψ_k,  H_ψ_iψ_k = C_ik ∂II_i/∂ψ_i ∂II_k/∂ψ_k.
-    BendingMatrix               &H = *hessian;
-    std::array<std::array<double, 9>, 3> q{};
+    // Gauss–Newton part Σ_ik C_ik ∇II_i ∇II_kᵀ, symmetric (C is), in a and ψ, then the
+    // positions' block mapped to the vertices (edge_basis_to_vertices). With q_k = Σ_i
+    // C_ki ∇_a II_i: H_aa = Σ_k ∇_a II_k q_kᵀ, H_aψ_k = q_k ∂II_k/∂ψ_k, H_ψ_iψ_k = C_ik
+    // ∂II_i/∂ψ_i ∂II_k/∂ψ_k.
+    BendingMatrix                        &H = *hessian;
+    std::array<std::array<double, 6>, 3> q{};
     for (unsigned int k = 0; k < 3; ++k)
       for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int j = 0; j < 9; ++j)
+        for (unsigned int j = 0; j < 6; ++j)
           q[k][j] += rest.stiffness[k][i] * dII[i][j];
-    for (unsigned int a = 0; a < 9; ++a)
-      for (unsigned int b = a; b < 9; ++b)
-        H[a][b] = H[b][a] =
-          dII[0][a] * q[0][b] + dII[1][a] * q[1][b] + dII[2][a] * q[2][b];
+    double blocks[3][3][3]; // H_11, H_12, H_22 of H_aa (H_11, H_22 mirrored)
+    for (unsigned int b = 0; b < 3; ++b)
+      for (unsigned int r = 0; r < 3; ++r)
+        for (unsigned int c = b == 1 ? 0 : r; c < 3; ++c)
+          {
+            const unsigned int row = b == 2 ? 3 + r : r, column = b == 0 ? c : 3 + c;
+            blocks[b][r][c] = dII[0][row] * q[0][column] + dII[1][row] * q[1][column] +
+                              dII[2][row] * q[2][column];
+            if (b != 1)
+              blocks[b][c][r] = blocks[b][r][c];
+          }
+    edge_basis_to_vertices(blocks, H);
     for (unsigned int k = 0; k < 3; ++k)
       {
-        const double d_psi = dII[k][9 + k];
+        std::array<double, 9> q_x;
+        to_vertices(q[k], q_x);
         for (unsigned int a = 0; a < 9; ++a)
-          H[a][9 + k] = H[9 + k][a] = q[k][a] * d_psi;
+          H[a][9 + k] = H[9 + k][a] = q_x[a] * dII_psi[k];
         for (unsigned int i = 0; i < 3; ++i)
-          H[9 + i][9 + k] = rest.stiffness[i][k] * dII[i][9 + i] * d_psi;
+          H[9 + i][9 + k] = rest.stiffness[i][k] * dII_psi[i] * dII_psi[k];
       }
     if (gauss_newton)
       return energy;

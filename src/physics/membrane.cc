@@ -176,26 +176,7 @@ namespace clothsim::physics
                   A * (v[0][i] * a_b(0, j) + v[1][i] * a_b(1, j) + (i == j ? S_geo[a][cc] : 0.));
           }
 
-        // Chain rule through a_1 = x1 - x0, a_2 = x2 - x0 (vertex weights w_0 = (-1,
-        // -1), w_1 = (1, 0), w_2 = (0, 1)): K_11 = H_11, K_12 = H_12, K_22 = H_22,
-        // K_10 = -(H_11 + H_12), K_20 = -(H_21 + H_22), K_00 = H_11 + H_12 + H_21 + H_22,
-        // and K_uv = K_vuᵀ.
-        ElementMatrix &K = *hessian;
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int j = 0; j < 3; ++j)
-            {
-              const double h11 = H[0][i][j], h12 = H[1][i][j], h21 = H[1][j][i],
-                           h22 = H[2][i][j];
-              K[3 + i][3 + j] = h11;
-              K[3 + i][6 + j] = h12;
-              K[6 + i][3 + j] = h21;
-              K[6 + i][6 + j] = h22;
-              K[3 + i][j]     = -(h11 + h12);
-              K[6 + i][j]     = -(h21 + h22);
-              K[j][3 + i]     = -(h11 + h12);
-              K[j][6 + i]     = -(h21 + h22);
-              K[i][j]         = h11 + h12 + h21 + h22;
-            }
+        edge_basis_to_vertices(H, *hessian);
       }
     return A * s.energy_density;
   }
