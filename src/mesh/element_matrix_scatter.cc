@@ -99,7 +99,8 @@ namespace clothsim::mesh
             int     n_entries = 0;
             double *row       = nullptr;
             int    *columns   = nullptr;
-            if (rows[i] < 0 || crs.ExtractMyRowView(rows[i], n_entries, row, columns) != 0)
+            if (rows[i] < 0 ||
+                crs.ExtractMyRowView(rows[i], n_entries, row, columns) != 0)
               {
                 status[element] = Status::other;
                 break;

@@ -78,12 +78,12 @@ namespace clothsim::mesh
       direct,
       other
     };
-    static inline unsigned long generation = 0;
-    unsigned long               built_at   = 0;
-    const void                 *matrix_id  = nullptr;
+    static inline unsigned long generation     = 0;
+    unsigned long               built_at       = 0;
+    const void                 *matrix_id      = nullptr;
     const void                 *constraints_id = nullptr;
-    int                         n_nonzeros = -1;
-    unsigned int                n_dofs     = 0;
+    int                         n_nonzeros     = -1;
+    unsigned int                n_dofs         = 0;
     // Per element: whether it can be added directly; its rows (local indices) and the
     // position of each entry (row-major) within its row.
     std::vector<Status>        status;

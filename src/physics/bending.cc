@@ -21,7 +21,8 @@ namespace clothsim::physics
     double
     principal_tilt(const double tilt)
     {
-      return std::abs(tilt) <= numbers::PI ? tilt : std::remainder(tilt, 2. * numbers::PI);
+      return std::abs(tilt) <= numbers::PI ? tilt
+                                           : std::remainder(tilt, 2. * numbers::PI);
     }
 
     // f, f', f'' of the director function at δ (any branch: δ is reduced first).
@@ -349,11 +350,12 @@ namespace clothsim::physics
                                   BendingVector           &gradient,
                                   BendingMatrix           *hessian)
   {
-    // h_i and φ_i with their first and (if a Hessian is wanted) second derivatives in
+    // h_i and φ_i with their first derivatives in the 6 edge-basis coordinates a =
+    // (a_1, a_2) (below), and for the exact Hessian their first and second derivatives in
     // the 9 coordinates.
     std::array<double, 3>                h, phi;
     std::array<std::array<double, 6>, 3> d_altitude, d_tilt; // in a = (a_1, a_2)
-    std::array<std::array<double, 9>, 3> dh, dphi;            // in x (exact Hessian only)
+    std::array<std::array<double, 9>, 3> dh, dphi;           // in x (exact Hessian only)
     // Second derivatives: written (every entry) and read only with the exact Hessian, so
     // not zeroed here (3.9 kB per triangle, on every gradient).
     std::array<std::array<std::array<double, 9>, 9>, 3> ddh, ddphi;
@@ -445,7 +447,8 @@ namespace clothsim::physics
         II[i] = 2. * h[i] * f[i].value;
         II_minus_rest[i] = II[i] - rest.rest_edge_curvature[i];
         for (unsigned int j = 0; j < 6; ++j)
-          dII[i][j] = 2. * (f[i].value * d_altitude[i][j] + h[i] * f[i].first * d_tilt[i][j]);
+          dII[i][j] =
+            2. * (f[i].value * d_altitude[i][j] + h[i] * f[i].first * d_tilt[i][j]);
         dII_psi[i] = 2. * h[i] * f[i].first * directors.sign[i];
       }
 
@@ -477,7 +480,7 @@ namespace clothsim::physics
     // positions' block mapped to the vertices (edge_basis_to_vertices). With q_k = Σ_i
     // C_ki ∇_a II_i: H_aa = Σ_k ∇_a II_k q_kᵀ, H_aψ_k = q_k ∂II_k/∂ψ_k, H_ψ_iψ_k = C_ik
     // ∂II_i/∂ψ_i ∂II_k/∂ψ_k.
-    BendingMatrix                        &H = *hessian;
+    BendingMatrix                       &H = *hessian;
     std::array<std::array<double, 6>, 3> q{};
     for (unsigned int k = 0; k < 3; ++k)
       for (unsigned int i = 0; i < 3; ++i)

@@ -172,8 +172,8 @@ namespace clothsim::physics
                 v[d][i] = C[a][0][cc][d] * a_b(0, i) + C[a][1][cc][d] * a_b(1, i);
             for (unsigned int i = 0; i < 3; ++i)
               for (unsigned int j = 0; j < 3; ++j)
-                H[p][i][j] =
-                  A * (v[0][i] * a_b(0, j) + v[1][i] * a_b(1, j) + (i == j ? S_geo[a][cc] : 0.));
+                H[p][i][j] = A * (v[0][i] * a_b(0, j) + v[1][i] * a_b(1, j) +
+                                  (i == j ? S_geo[a][cc] : 0.));
           }
 
         edge_basis_to_vertices(H, *hessian);

@@ -75,8 +75,8 @@ namespace clothsim::physics
   using ElementMatrix     = std::array<std::array<double, 9>, 9>;
 
   // The chain rule from the edge basis a_1 = x1 - x0, a_2 = x2 - x0 to the vertices: a
-  // Hessian given by its 3 x 3 blocks H_11, H_12, H_22 in (a_1, a_2) (H_21 = H_12ᵀ) is, in
-  // the vertices (weights w_0 = (-1, -1), w_1 = (1, 0), w_2 = (0, 1)), K_11 = H_11,
+  // Hessian given by its 3 x 3 blocks H_11, H_12, H_22 in (a_1, a_2) (H_21 = H_12ᵀ) is,
+  // in the vertices (weights w_0 = (-1, -1), w_1 = (1, 0), w_2 = (0, 1)), K_11 = H_11,
   // K_12 = H_12, K_22 = H_22, K_10 = -(H_11 + H_12), K_20 = -(H_21 + H_22), K_00 = H_11
   // + H_12 + H_21 + H_22 and K_uv = K_vuᵀ: written to rows and columns 0-8 of K.
   template <class Matrix>
@@ -88,10 +88,10 @@ namespace clothsim::physics
         {
           const double h11 = H[0][i][j], h12 = H[1][i][j], h21 = H[1][j][i],
                        h22 = H[2][i][j];
-          K[3 + i][3 + j] = h11;
-          K[3 + i][6 + j] = h12;
-          K[6 + i][3 + j] = h21;
-          K[6 + i][6 + j] = h22;
+          K[3 + i][3 + j]  = h11;
+          K[3 + i][6 + j]  = h12;
+          K[6 + i][3 + j]  = h21;
+          K[6 + i][6 + j]  = h22;
           K[3 + i][j] = K[j][3 + i] = -(h11 + h12);
           K[6 + i][j] = K[j][6 + i] = -(h21 + h22);
           K[i][j]                   = h11 + h12 + h21 + h22;
