@@ -142,22 +142,25 @@ namespace clothsim::physics
           const double       c =
             (N[0] * r_cross_e[0] + N[1] * r_cross_e[1] + N[2] * r_cross_e[2]) / length;
           const double h = norm_N / length, denominator = n * n + c * c;
-          altitude[i]             = h;
-          tilt[i]                 = std::atan2(c, n);
+          // Reciprocals once: the loop below would otherwise divide 24 times per edge.
+          const double inverse_length      = 1. / length,
+                       inverse_denominator = 1. / denominator;
+          altitude[i]                      = h;
+          tilt[i]                          = std::atan2(c, n);
           const Vec3<double> dn_1 = cross(a2, r), dn_2 = cross(r, a1),
                              dN_1 = cross(a2, r_cross_e), dN_2 = cross(r_cross_e, a1);
           for (unsigned int d = 0; d < 3; ++d)
             for (unsigned int side = 0; side < 2; ++side)
               {
-                const double       de     = side == 0 ? e_1[i] : e_2[i];
-                const double       d_norm = side == 0 ? d_norm_1[d] : d_norm_2[d];
-                const double       d_n    = side == 0 ? dn_1[d] : dn_2[d];
-                const double       d_N    = side == 0 ? dN_1[d] : dN_2[d];
-                const double       d_len  = de * e[d] / length;
-                const double       d_c = (d_N + de * N_cross_r[d] - c * d_len) / length;
-                const unsigned int j   = 3 * side + d;
-                d_altitude[i][j]       = (d_norm - h * d_len) / length;
-                d_tilt[i][j]           = (n * d_c - c * d_n) / denominator;
+                const double de     = side == 0 ? e_1[i] : e_2[i];
+                const double d_norm = side == 0 ? d_norm_1[d] : d_norm_2[d];
+                const double d_n    = side == 0 ? dn_1[d] : dn_2[d];
+                const double d_N    = side == 0 ? dN_1[d] : dN_2[d];
+                const double d_len  = de * e[d] * inverse_length;
+                const double d_c = (d_N + de * N_cross_r[d] - c * d_len) * inverse_length;
+                const unsigned int j = 3 * side + d;
+                d_altitude[i][j]     = (d_norm - h * d_len) * inverse_length;
+                d_tilt[i][j]         = (n * d_c - c * d_n) * inverse_denominator;
               }
         }
     }
