@@ -15,6 +15,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include "app/mpi_session.h"
 #include "solvers/mumps_factorization.h"
 
 #include <Epetra_MpiComm.h>
@@ -141,11 +142,11 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  const int      rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-  Epetra_MpiComm comm(MPI_COMM_WORLD);
-  const int      n = 1000;
-  Epetra_Map     map(n, 0, comm);
+  clothsim::MpiSession mpi(argc, argv);
+  const int            rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  Epetra_MpiComm       comm(MPI_COMM_WORLD);
+  const int            n = 1000;
+  Epetra_Map           map(n, 0, comm);
 
   {
     // Indefinite: a = 0.3, b = 1 has eigenvalues on both sides of zero.

@@ -35,6 +35,7 @@
 //    buckling mode).
 
 #include "physics/self_contact.h"
+#include "app/mpi_session.h"
 #include "contact_checks.h"
 
 using namespace clothsim;
@@ -339,10 +340,10 @@ namespace
 int
 main(int argc, char **argv)
 {
-  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  ConditionalOStream               pcout(std::cout,
+  clothsim::MpiSession mpi(argc, argv);
+  ConditionalOStream   pcout(std::cout,
                            Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
-  bool                             passed = true;
+  bool                 passed = true;
   if (argc > 1 && std::string(argv[1]) == "twisted-tube")
     passed &= check_twisted_tube(pcout);
   else if (argc > 1 && std::string(argv[1]) == "sheet-folds")

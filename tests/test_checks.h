@@ -18,6 +18,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include "app/mpi_session.h"
 #include "csv.h"
 
 #include <algorithm>
@@ -62,14 +63,14 @@ namespace clothsim::test
   struct Environment
   {
     Environment(int &argc, char **&argv)
-      : mpi(argc, argv, 1)
+      : mpi(argc, argv)
       , communicator(MPI_COMM_WORLD)
       , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     {}
 
-    Utilities::MPI::MPI_InitFinalize mpi;
-    const MPI_Comm                   communicator;
-    ConditionalOStream               pcout;
+    clothsim::MpiSession mpi;
+    const MPI_Comm       communicator;
+    ConditionalOStream   pcout;
   };
 
   // Prints the verdict, PASSED or FAILED, and returns the program's exit code.

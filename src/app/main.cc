@@ -9,13 +9,12 @@
 //   mpirun -np 2 clothsim params/hanging-sheet.prm
 //   clothsim --print-parameters
 
-#include <deal.II/base/mpi.h>
-
 #include "app/application.h"
+#include "app/mpi_session.h"
 
 int
 main(int argc, char **argv)
 {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  clothsim::MpiSession mpi(argc, argv);
   return clothsim::run_application(argc, argv);
 }
