@@ -127,19 +127,29 @@ namespace clothsim::test
                        0.05);
   }
 
-  // Every row of the run's statistics.csv has the cloth apart from every obstacle.
+  // Every row of the run's statistics.csv has the cloth apart from every obstacle: its
+  // vertices and contact pairs, and (`whole_surface`, with edge contact) every point of
+  // its triangles.
   inline bool
   check_outside(ConditionalOStream          &pcout,
                 const std::string           &name,
-                const std::filesystem::path &directory)
+                const std::filesystem::path &directory,
+                const bool                   whole_surface = true)
   {
     const Csv statistics = read_csv((directory / "statistics.csv").string());
-    double    closest    = std::numeric_limits<double>::infinity();
+    double    closest = std::numeric_limits<double>::infinity(), surface = closest;
     for (unsigned int r = 0; r < statistics.rows.size(); ++r)
-      closest = std::min(closest, statistics.number(r, "contact_min_distance"));
-    return check_above(pcout,
-                       name + ": smallest cloth-obstacle distance, m",
-                       closest,
-                       0.);
+      {
+        closest = std::min(closest, statistics.number(r, "contact_min_distance"));
+        surface = std::min(surface, statistics.number(r, "contact_surface_distance"));
+      }
+    bool passed =
+      check_above(pcout, name + ": smallest cloth-obstacle distance, m", closest, 0.);
+    if (whole_surface)
+      passed &= check_above(pcout,
+                            name + ": smallest distance of the cloth's triangles, m",
+                            surface,
+                            0.);
+    return passed;
   }
 } // namespace clothsim::test

@@ -6,12 +6,13 @@
 //    their triangle exactly when solving for the intersection point says so.
 // 2. The pair barrier (physics/pair_barrier.h): gradient and Hessian against central
 //    differences (relative 1e-5) for every kind and set of moving points, edge-edge
-//    pairs with and without the mollifier at work.
+//    pairs with and without the mollifier at work, of the pair's distance and of its
+//    distance less an offset r (an analytic obstacle's inflated core, edge contact).
 // 3. The positive semi-definite projection: a 12 x 12 matrix of known eigenvalues
 //    (half negative) becomes the matrix with those set to zero, to 1e-12.
 // 4. The line search's cap (pair_step_bound) on 2,000 random paths, many crossing:
 //    the distance stays at or above the fraction of its start along the whole capped
-//    path (sampled at 1,000 points).
+//    path (sampled at 1,000 points); the same for the distance less an offset.
 // 5. The bounding-volume hierarchy finds exactly the overlapping boxes of 5,000.
 // 6. The contact and friction terms of a sheet 2 mm above the apex of a pyramid mesh
 //    (its apex vertex against cloth triangles, its edges against cloth edges, cloth
@@ -171,84 +172,108 @@ namespace
                                                         {{true, true, false, false}},
                                                         {{true, true, true, true}}}};
     bool                                     passed = true;
+    // offset r: an analytic obstacle's core feature inflated by r (edge contact).
     for (unsigned int m = 0; m < masks.size(); ++m)
       for (const bool mollified : {false, true})
-        {
-          if (mollified && m != 2)
-            continue;
-          const PairKind kind  = m < 2 ? PairKind::point_triangle : PairKind::edge_edge;
-          double         g_err = 0., h_err = 0.;
-          unsigned int   tried = 0;
-          std::mt19937   local(m + 10 * mollified);
-          while (tried < 50)
-            {
-              PairPoints x = random_pair(local, 0.05, kind);
-              if (mollified) // nearly parallel edges
-                x[3] = x[2] + (x[1] - x[0]) + Tensor<1, 3>({2e-3, -1e-3, 1e-3});
-              const double d = std::sqrt(physics::pair_squared_distance(kind, x));
-              if (d > 0.9 * d_hat || d < 0.1 * d_hat)
-                {
-                  // Move the second primitive to a distance within the barrier.
-                  const auto w =
-                    physics::closest_point_weights(physics::distance_type(kind, x), x);
-                  Tensor<1, 3> r;
-                  for (unsigned int i = 0; i < 4; ++i)
-                    r += w[i] * x[i];
-                  const double target = d_hat * (0.2 + 0.6 * (0.5 + 0.5 * u(random)));
-                  const unsigned int first = kind == PairKind::point_triangle ? 1 : 2;
-                  for (unsigned int i = first; i < 4; ++i)
-                    x[i] += r * (1. - target / r.norm());
-                }
-              const double dd = std::sqrt(physics::pair_squared_distance(kind, x));
-              if (dd >= d_hat || dd <= 0.)
-                continue;
-              const double threshold =
-                mollified
-                  ? physics::mollifier_threshold(x[0].distance(x[1]), x[2].distance(x[3]))
-                  : 0.;
-              const physics::PairBarrier b = physics::pair_barrier(
-                kind, x, masks[m], kappa, d_hat, threshold, 2, false);
-              const double h = 1e-8;
-              unsigned int k = 0;
-              for (unsigned int i = 0; i < 4; ++i)
-                if (masks[m][i])
-                  for (unsigned int c = 0; c < 3; ++c, ++k)
-                    {
-                      PairPoints plus = x, minus = x;
-                      plus[i][c] += h;
-                      minus[i][c] -= h;
-                      const auto bp = physics::pair_barrier(
-                        kind, plus, masks[m], kappa, d_hat, threshold, 2, false);
-                      const auto bm = physics::pair_barrier(
-                        kind, minus, masks[m], kappa, d_hat, threshold, 2, false);
-                      double g_scale = 0., h_scale = 0.;
-                      for (unsigned int j = 0; j < b.n; ++j)
-                        {
-                          g_scale = std::max(g_scale, std::abs(b.gradient[j]));
-                          h_scale = std::max(h_scale, std::abs(b.hessian[j * b.n + k]));
-                        }
-                      g_err = std::max(g_err,
-                                       std::abs((bp.value - bm.value) / (2. * h) -
-                                                b.gradient[k]) /
-                                         g_scale);
-                      for (unsigned int j = 0; j < b.n; ++j)
-                        h_err =
-                          std::max(h_err,
-                                   std::abs((bp.gradient[j] - bm.gradient[j]) / (2. * h) -
-                                            b.hessian[j * b.n + k]) /
-                                     h_scale);
-                    }
-              ++tried;
-            }
-          const std::string what =
-            std::string(kind == PairKind::point_triangle ? "point-triangle"
-                                                         : "edge-edge") +
-            ", " + std::to_string(n_moving(masks[m])) + " moving" +
-            (mollified ? ", mollified" : "") + ": ";
-          passed &=
-            check_below(pcout, what + "gradient against differences", g_err, 1e-5);
-          passed &= check_below(pcout, what + "Hessian against differences", h_err, 1e-5);
-        }
+        for (const double offset : {0., 0.03})
+          {
+            if (mollified && m != 2)
+              continue;
+            const PairKind kind  = m < 2 ? PairKind::point_triangle : PairKind::edge_edge;
+            double         g_err = 0., h_err = 0.;
+            unsigned int   tried = 0;
+            std::mt19937   local(m + 10 * mollified);
+            while (tried < 50)
+              {
+                PairPoints x = random_pair(local, 0.05, kind);
+                if (mollified) // nearly parallel edges
+                  x[3] = x[2] + (x[1] - x[0]) + Tensor<1, 3>({2e-3, -1e-3, 1e-3});
+                const double d = std::sqrt(physics::pair_squared_distance(kind, x));
+                if (d - offset > 0.9 * d_hat || d - offset < 0.1 * d_hat)
+                  {
+                    // Move the second primitive to a distance within the barrier.
+                    const auto w =
+                      physics::closest_point_weights(physics::distance_type(kind, x), x);
+                    Tensor<1, 3> r;
+                    for (unsigned int i = 0; i < 4; ++i)
+                      r += w[i] * x[i];
+                    const double target =
+                      offset + d_hat * (0.2 + 0.6 * (0.5 + 0.5 * u(random)));
+                    const unsigned int first = kind == PairKind::point_triangle ? 1 : 2;
+                    for (unsigned int i = first; i < 4; ++i)
+                      x[i] += r * (1. - target / r.norm());
+                  }
+                const double dd =
+                  std::sqrt(physics::pair_squared_distance(kind, x)) - offset;
+                if (dd >= d_hat || dd <= 0.)
+                  continue;
+                const double threshold =
+                  mollified ? physics::mollifier_threshold(x[0].distance(x[1]),
+                                                           x[2].distance(x[3]))
+                            : 0.;
+                const physics::PairBarrier b = physics::pair_barrier(
+                  kind, x, masks[m], kappa, d_hat, threshold, 2, false, false, offset);
+                const double h = 1e-8;
+                unsigned int k = 0;
+                for (unsigned int i = 0; i < 4; ++i)
+                  if (masks[m][i])
+                    for (unsigned int c = 0; c < 3; ++c, ++k)
+                      {
+                        PairPoints plus = x, minus = x;
+                        plus[i][c] += h;
+                        minus[i][c] -= h;
+                        const auto bp      = physics::pair_barrier(kind,
+                                                              plus,
+                                                              masks[m],
+                                                              kappa,
+                                                              d_hat,
+                                                              threshold,
+                                                              2,
+                                                              false,
+                                                              false,
+                                                              offset);
+                        const auto bm      = physics::pair_barrier(kind,
+                                                              minus,
+                                                              masks[m],
+                                                              kappa,
+                                                              d_hat,
+                                                              threshold,
+                                                              2,
+                                                              false,
+                                                              false,
+                                                              offset);
+                        double     g_scale = 0., h_scale = 0.;
+                        for (unsigned int j = 0; j < b.n; ++j)
+                          {
+                            g_scale = std::max(g_scale, std::abs(b.gradient[j]));
+                            h_scale = std::max(h_scale, std::abs(b.hessian[j * b.n + k]));
+                          }
+                        g_err = std::max(g_err,
+                                         std::abs((bp.value - bm.value) / (2. * h) -
+                                                  b.gradient[k]) /
+                                           g_scale);
+                        for (unsigned int j = 0; j < b.n; ++j)
+                          h_err = std::max(h_err,
+                                           std::abs((bp.gradient[j] - bm.gradient[j]) /
+                                                      (2. * h) -
+                                                    b.hessian[j * b.n + k]) /
+                                             h_scale);
+                      }
+                ++tried;
+              }
+            const std::string what =
+              std::string(kind == PairKind::point_triangle ? "point-triangle"
+                                                           : "edge-edge") +
+              ", " + std::to_string(n_moving(masks[m])) + " moving" +
+              (mollified ? ", mollified" : "") +
+              (offset > 0. ? ", distance less r = " + std::to_string(offset) + " m"
+                           : "") +
+              ": ";
+            passed &=
+              check_below(pcout, what + "gradient against differences", g_err, 1e-5);
+            passed &=
+              check_below(pcout, what + "Hessian against differences", h_err, 1e-5);
+          }
     return passed;
   }
 
@@ -297,44 +322,52 @@ namespace
     const double                           fraction = 0.1;
     bool                                   passed   = true;
     for (const PairKind kind : {PairKind::point_triangle, PairKind::edge_edge})
-      {
-        double       worst  = std::numeric_limits<double>::infinity();
-        unsigned int capped = 0;
-        for (unsigned int sample = 0; sample < 1000; ++sample)
-          {
-            const PairPoints x  = random_pair(random, 0.1, kind);
-            const double     d0 = std::sqrt(physics::pair_squared_distance(kind, x));
-            // The first primitive toward the second's centre and beyond.
-            PairPoints         dx;
-            const Tensor<1, 3> toward =
-              (kind == PairKind::point_triangle ? (x[1] + x[2] + x[3]) / 3. - x[0]
-                                                : (x[2] + x[3] - x[0] - x[1]) / 2.) *
-              (1. + 2. * (0.5 + 0.5 * u(random)));
-            for (unsigned int i = 0; i < 4; ++i)
-              for (unsigned int c = 0; c < 3; ++c)
-                dx[i][c] =
-                  0.05 * u(random) +
-                  ((i < (kind == PairKind::point_triangle ? 1u : 2u)) ? toward[c] : 0.);
-            const double alpha = physics::pair_step_bound(kind, x, dx, fraction);
-            capped += alpha < 1. ? 1 : 0;
-            for (unsigned int k = 0; k <= 1000; ++k)
-              {
-                PairPoints y;
-                for (unsigned int i = 0; i < 4; ++i)
-                  y[i] = x[i] + (alpha * k / 1000.) * dx[i];
-                worst = std::min(worst,
-                                 std::sqrt(physics::pair_squared_distance(kind, y)) / d0);
-              }
-          }
-        const std::string name =
-          kind == PairKind::point_triangle ? "point-triangle" : "edge-edge";
-        pcout << "  " << name << ": " << capped << " of 1000 paths capped" << std::endl;
-        passed &= check_at_least(pcout,
-                                 name + ": smallest d / d0 on the capped paths",
-                                 worst,
-                                 fraction * (1. - 1e-12));
-        passed &= check_above(pcout, name + ": paths capped", capped, 200);
-      }
+      for (const double offset : {0., 0.01})
+        {
+          double       worst  = std::numeric_limits<double>::infinity();
+          unsigned int capped = 0;
+          for (unsigned int sample = 0; sample < 1000; ++sample)
+            {
+              const PairPoints x = random_pair(random, 0.1, kind);
+              const double     d0 =
+                std::sqrt(physics::pair_squared_distance(kind, x)) - offset;
+              if (d0 <= 0.)
+                continue;
+              // The first primitive toward the second's centre and beyond.
+              PairPoints         dx;
+              const Tensor<1, 3> toward =
+                (kind == PairKind::point_triangle ? (x[1] + x[2] + x[3]) / 3. - x[0]
+                                                  : (x[2] + x[3] - x[0] - x[1]) / 2.) *
+                (1. + 2. * (0.5 + 0.5 * u(random)));
+              for (unsigned int i = 0; i < 4; ++i)
+                for (unsigned int c = 0; c < 3; ++c)
+                  dx[i][c] =
+                    0.05 * u(random) +
+                    ((i < (kind == PairKind::point_triangle ? 1u : 2u)) ? toward[c] : 0.);
+              const double alpha =
+                physics::pair_step_bound(kind, x, dx, fraction, offset);
+              capped += alpha < 1. ? 1 : 0;
+              for (unsigned int k = 0; k <= 1000; ++k)
+                {
+                  PairPoints y;
+                  for (unsigned int i = 0; i < 4; ++i)
+                    y[i] = x[i] + (alpha * k / 1000.) * dx[i];
+                  worst = std::min(
+                    worst,
+                    (std::sqrt(physics::pair_squared_distance(kind, y)) - offset) / d0);
+                }
+            }
+          const std::string name =
+            std::string(kind == PairKind::point_triangle ? "point-triangle"
+                                                         : "edge-edge") +
+            (offset > 0. ? " less r = " + std::to_string(offset) + " m" : "");
+          pcout << "  " << name << ": " << capped << " of 1000 paths capped" << std::endl;
+          passed &= check_at_least(pcout,
+                                   name + ": smallest d / d0 on the capped paths",
+                                   worst,
+                                   fraction * (1. - 1e-12));
+          passed &= check_above(pcout, name + ": paths capped", capped, 200);
+        }
     return passed;
   }
 

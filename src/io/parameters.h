@@ -333,6 +333,7 @@ namespace clothsim
     double       thickness;                    // d̂, m
     double       barrier_acceleration;         // a_b, m/s²
     double       slip_velocity;                // ε_v, m/s
+    bool         edge_contact;                 // cloth edges/triangles vs core features
     unsigned int friction_updates;             // solves per step
     bool         self_contact;                 // the cloth with itself
     bool         self_contact_full_pairs;      // whole pair Hessians in the tangent

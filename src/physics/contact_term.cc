@@ -48,8 +48,8 @@ namespace clothsim::physics
   {
     discretization.initialize_ghosted(step_start);
     // The owned vertices, in the order of their first triangle.
-    const ClothSurface cloth(discretization, lumped_masses);
-    for (const ClothSurface::Vertex &vertex : cloth.vertices)
+    surface = ClothSurface(discretization, lumped_masses);
+    for (const ClothSurface::Vertex &vertex : surface.vertices)
       if (vertex.owned)
         table.push_back(
           {vertex.dofs,
@@ -216,6 +216,8 @@ namespace clothsim::physics
     failure = first_message(failure);
     if (failure.empty() && !mesh_pairs.empty())
       failure = first_message(begin_mesh_step(u_n, u_new, constraints));
+    if (failure.empty() && !mesh_pairs.empty())
+      failure = ride_along(t_new, u_n, u_new, constraints);
     return failure;
   }
 
@@ -254,6 +256,10 @@ namespace clothsim::physics
     const double             *target = ghosted_values(guess, n);
     const std::vector<double> at_start(start, start + n);
     mesh_pairs.lag_friction(nullptr, at_start, start_poses, end_poses, lagged);
+    if (std::none_of(obstacles.begin(), obstacles.end(), [](const Obstacle &obstacle) {
+          return obstacle.shape().core == ObstacleCore::mesh;
+        }))
+      return "";
 
     std::vector<double> from(at_start), direction(n);
     mesh_pairs.carry(start_poses, end_poses, settings.ccd_fraction, from);
@@ -264,16 +270,19 @@ namespace clothsim::physics
           from[i] = target[i];
         direction[i] = target[i] - from[i];
       }
-    const std::string failure      = mesh_pairs.touching(from.data(), end_poses);
-    const MPI_Comm    communicator = discretization.get_communicator();
+    const std::string failure =
+      mesh_pairs.touching(from.data(), end_poses, /*meshes_only=*/true);
+    const MPI_Comm communicator = discretization.get_communicator();
     if (Utilities::MPI::max(failure.empty() ? 0 : 1, communicator) > 0)
       return failure.empty() ? failure : "no start for the step keeps " + failure;
-    const double alpha =
-      Utilities::MPI::min(mesh_pairs.largest_step(from.data(),
-                                                  direction.data(),
-                                                  end_poses,
-                                                  settings.ccd_fraction),
-                          communicator);
+    double alpha = 1.;
+    for (unsigned int o = 0; o < obstacles.size(); ++o)
+      if (is_mesh(o))
+        alpha =
+          std::min(alpha,
+                   mesh_pairs.largest_step(
+                     from.data(), direction.data(), end_poses, settings.ccd_fraction, o));
+    alpha = Utilities::MPI::min(alpha, communicator);
     for (const types::global_dof_index i : discretization.owned_dofs())
       if (!constraints.is_constrained(i))
         {
@@ -409,7 +418,21 @@ namespace clothsim::physics
     const double                *local      = ghosted_values(u, n_relevant);
     const double                *step       = ghosted_values(direction, n_relevant);
     const std::vector<RigidPose> poses      = poses_at(time);
-    double                       alpha      = 1.;
+    double                       alpha      = vertex_step_bound(local, step, poses);
+    if (!mesh_pairs.empty())
+      alpha =
+        std::min(alpha,
+                 mesh_pairs.largest_step(local, step, poses, settings.ccd_fraction));
+    return Utilities::MPI::min(alpha, discretization.get_communicator());
+  }
+
+
+  double
+  ObstacleContact::vertex_step_bound(const double                 *local,
+                                     const double                 *step,
+                                     const std::vector<RigidPose> &poses) const
+  {
+    double alpha = 1.;
     for (const Vertex &vertex : table)
       {
         const Point<3> x = position(vertex, local);
@@ -432,11 +455,7 @@ namespace clothsim::physics
                        obstacles[o].step_bound(poses[o], x, dx, settings.ccd_fraction));
           }
       }
-    if (!mesh_pairs.empty())
-      alpha =
-        std::min(alpha,
-                 mesh_pairs.largest_step(local, step, poses, settings.ccd_fraction));
-    return Utilities::MPI::min(alpha, discretization.get_communicator());
+    return alpha;
   }
 
 
@@ -446,6 +465,7 @@ namespace clothsim::physics
     const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
     const std::vector<RigidPose> poses = poses_at(time);
     Report                       result{std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity(),
                   std::vector<Tensor<1, 3>>(obstacles.size()),
                   std::vector<unsigned int>(obstacles.size(), 0)};
     for (const Vertex &vertex : table)
@@ -469,8 +489,12 @@ namespace clothsim::physics
     if (!mesh_pairs.empty())
       mesh_pairs.report(
         local, poses, result.min_distance, result.forces, result.contacts);
+    result.min_surface_distance = result.min_distance;
+    lower_to_surface_distance(local, poses, result.min_surface_distance);
     const MPI_Comm communicator = discretization.get_communicator();
     result.min_distance         = Utilities::MPI::min(result.min_distance, communicator);
+    result.min_surface_distance =
+      Utilities::MPI::min(result.min_surface_distance, communicator);
     for (unsigned int o = 0; o < obstacles.size(); ++o)
       {
         for (unsigned int c = 0; c < 3; ++c)
@@ -478,5 +502,111 @@ namespace clothsim::physics
         result.contacts[o] = Utilities::MPI::sum(result.contacts[o], communicator);
       }
     return result;
+  }
+
+
+  void
+  ObstacleContact::lower_to_surface_distance(const double                 *u_local,
+                                             const std::vector<RigidPose> &poses,
+                                             double &min_distance) const
+  {
+    const double tolerance = 1e-3 * settings.thickness;
+    for (const std::array<unsigned int, 3> &triangle : surface.triangles)
+      {
+        const std::array<Point<3>, 3> x = {{surface.position(triangle[0], u_local),
+                                            surface.position(triangle[1], u_local),
+                                            surface.position(triangle[2], u_local)}};
+        const double longest            = std::sqrt(std::max({x[0].distance_square(x[1]),
+                                                              x[1].distance_square(x[2]),
+                                                              x[2].distance_square(x[0])}));
+        for (unsigned int o = 0; o < obstacles.size(); ++o)
+          {
+            // A plane's distance is smallest at a corner, which report() has seen.
+            const ObstacleCore core = obstacles[o].shape().core;
+            if (core == ObstacleCore::mesh || core == ObstacleCore::half_space)
+              continue;
+            // d is 1-Lipschitz: no point of the triangle is closer than its nearest
+            // corner minus its longest edge.
+            double corner = std::numeric_limits<double>::infinity();
+            for (const Point<3> &p : x)
+              corner = std::min(corner, obstacles[o].distance(poses[o], p, false).value);
+            if (corner - longest >= min_distance)
+              continue;
+            min_distance =
+              std::min(min_distance,
+                       obstacles[o].triangle_distance(poses[o], x, tolerance));
+          }
+      }
+  }
+
+
+  std::string
+  ObstacleContact::ride_along(const double                     t_new,
+                              const VectorType                &u_n,
+                              VectorType                      &u_new,
+                              const AffineConstraints<double> &constraints)
+  {
+    const unsigned int n = discretization.relevant_dofs().n_elements();
+    VectorType         start, guess, marks;
+    discretization.initialize_ghosted(start);
+    discretization.initialize_ghosted(guess);
+    discretization.initialize_owned(marks);
+    start                                  = u_n;
+    const double             *start_values = ghosted_values(start, n);
+    const std::vector<double> at_start(start_values, start_values + n);
+    const MPI_Comm            communicator = discretization.get_communicator();
+    // Halvings of each vertex's way from its step-start position carried along with
+    // obstacle o (feasible: it keeps its distance) to its guess.
+    std::vector<unsigned int> halvings(table.size() * obstacles.size(), 0);
+    constexpr unsigned int    carried_along = 30; // then it rides along exactly
+    for (;;)
+      {
+        guess                = u_new;
+        const double *values = ghosted_values(guess, n);
+        unsigned int  moved = 0, left = 0;
+        for (unsigned int o = 0; o < obstacles.size() && moved == 0; ++o)
+          {
+            if (is_mesh(o) || obstacles[o].shape().surface == nullptr)
+              continue;
+            marks                                           = 0.;
+            const std::vector<types::global_dof_index> dofs = mesh_pairs.pierced(
+              values, at_start, start_poses, end_poses, settings.ccd_fraction, o);
+            for (const types::global_dof_index dof : dofs)
+              marks[dof] += 1.;
+            marks.compress(VectorOperation::add);
+            for (unsigned int k = 0; k < table.size(); ++k)
+              {
+                const Vertex &vertex = table[k];
+                unsigned int &halved = halvings[k * obstacles.size() + o];
+                if (marks[vertex.dofs[0]] == 0.)
+                  continue;
+                if (halved == carried_along || constraints.is_constrained(vertex.dofs[0]))
+                  {
+                    ++left;
+                    continue;
+                  }
+                ++halved;
+                ++moved;
+                const Point<3> &carried = carried_points[k * obstacles.size() + o];
+                for (unsigned int c = 0; c < 3; ++c)
+                  {
+                    const double at = vertex.reference[c] + u_new[vertex.dofs[c]];
+                    const double to =
+                      halved == carried_along ? carried[c] : 0.5 * (carried[c] + at);
+                    u_new[vertex.dofs[c]] = to - vertex.reference[c];
+                  }
+              }
+            u_new.compress(VectorOperation::insert);
+            moved = Utilities::MPI::sum(moved, communicator);
+            left  = Utilities::MPI::sum(left, communicator);
+          }
+        if (moved == 0)
+          return left == 0 ? ""
+                           : "no start for the step to t = " + std::to_string(t_new) +
+                               " s keeps the cloth's triangles off the obstacles (" +
+                               std::to_string(left) +
+                               " vertices ride along with an obstacle already, or are "
+                               "pinned)";
+      }
   }
 } // namespace clothsim::physics

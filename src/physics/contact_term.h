@@ -152,12 +152,16 @@ namespace clothsim::physics
                  const VectorType &direction,
                  const double      time) const;
 
-    // The smallest vertex-obstacle distance at u (ghosted) at `time` (m; +inf with no
-    // obstacle near), and per obstacle the force the barrier exerts on the cloth (N).
-    // Collective.
+    // The smallest distance from an obstacle of what contact keeps off them (the
+    // cloth's vertices, and the pairs of edge contact and of mesh obstacles) and of the
+    // cloth's whole surface (its triangles measured against the analytic obstacles'
+    // signed distance too: negative where the cloth passes into an obstacle between its
+    // vertices) at u (ghosted) at `time` (m; +inf with no obstacle near), and per
+    // obstacle the force the barrier exerts on the cloth (N). Collective.
     struct Report
     {
       double                    min_distance;
+      double                    min_surface_distance;
       std::vector<Tensor<1, 3>> forces;
       std::vector<unsigned int> contacts; // vertices within d̂, per obstacle
     };
@@ -234,9 +238,33 @@ namespace clothsim::physics
     begin_mesh_step(const VectorType                &u_n,
                     VectorType                      &u_new,
                     const AffineConstraints<double> &constraints);
+    // The largest α <= 1 such that no owned vertex comes closer to an analytic obstacle
+    // than a tenth of its distance on the path u + s step, s in [0, α] (ghosted values;
+    // this rank's vertices, not reduced).
+    double
+    vertex_step_bound(const double                 *u_local,
+                      const double                 *step_local,
+                      const std::vector<RigidPose> &poses) const;
+    // begin_step for the analytic obstacles' core features (after the vertices and the
+    // mesh obstacles): every cloth vertex of a pair that `u_new` (owned) brings within a
+    // tenth of its step-start distance rides along with that obstacle instead (its
+    // step-start position carried along), until no pair does. Pinned vertices keep
+    // their guess. The failure message, or empty. Collective.
+    std::string
+    ride_along(const double                     t_new,
+               const VectorType                &u_n,
+               VectorType                      &u_new,
+               const AffineConstraints<double> &constraints);
     // Every obstacle's pose at `time`.
     std::vector<RigidPose>
     poses_at(const double time) const;
+    // Lowers `min_distance` to the smallest distance of a point of this rank's cloth
+    // triangles from an analytic obstacle, at u (`u_local`, ghosted values), the
+    // obstacles at `poses` (to 1e-3 d̂, from above).
+    void
+    lower_to_surface_distance(const double                 *u_local,
+                              const std::vector<RigidPose> &poses,
+                              double                       &min_distance) const;
     // `local` (this rank's message or empty) from the lowest rank that has one.
     std::string
     first_message(const std::string &local) const;
@@ -244,6 +272,7 @@ namespace clothsim::physics
     const std::vector<Obstacle> obstacles;
     const ContactSettings       settings;
     const mesh::Discretization &discretization;
+    ClothSurface                surface; // this rank's triangles and their vertices
     std::vector<Vertex>         table;
     std::vector<LaggedContact>  lagged;
     // Per vertex and obstacle (vertex-major), the step-start position carried along with

@@ -24,8 +24,16 @@ namespace clothsim::physics
     , cloth(discretization, lumped_masses)
   {
     for (unsigned int o = 0; o < obstacles.size(); ++o)
-      if (obstacles[o].shape().core == ObstacleCore::mesh)
+      if (obstacles[o].shape().surface != nullptr)
         mesh_obstacles.push_back(o);
+  }
+
+
+  double
+  MeshContact::offset(const unsigned int o) const
+  {
+    const ObstacleShape &shape = obstacles[o].shape();
+    return shape.core == ObstacleCore::mesh ? 0. : shape.radius;
   }
 
 
@@ -52,24 +60,22 @@ namespace clothsim::physics
                              const unsigned int                       only) const
   {
     const double a_per_d = settings.barrier_acceleration / settings.thickness;
-    // The box around cloth points (at u and u + step) in the body frame of `pose`.
-    std::vector<Point<3>> corners;
-    const auto            box_of = [&](const RigidPose                          &pose,
-                            const std::initializer_list<unsigned int> primitive) {
-      corners.clear();
+    // Each cloth vertex's box (around it at u and at u + step) in the obstacle's body
+    // frame, once per obstacle; a primitive's box joins its vertices' boxes, and a
+    // primitive whose box misses the surface's is not looked up.
+    std::vector<Box> vertex_boxes(cloth.vertices.size());
+    Box              box, bounds;
+    const auto       box_of = [&](const std::initializer_list<unsigned int> primitive,
+                            const double                              grow) {
+      box = vertex_boxes[*primitive.begin()];
       for (const unsigned int p : primitive)
+        box = box.merged(vertex_boxes[p]);
+      for (unsigned int c = 0; c < 3; ++c)
         {
-          const Point<3> x = cloth.position(p, u_local);
-          corners.push_back(pose.to_body(x));
-          if (step_local != nullptr)
-            {
-              Tensor<1, 3> dx;
-              for (unsigned int c = 0; c < 3; ++c)
-                dx[c] = step_local[cloth.vertices[p].local[c]];
-              corners.push_back(pose.to_body(x + dx));
-            }
+          box.lower[c] -= grow;
+          box.upper[c] += grow;
         }
-      return Box::around(corners, margin);
+      return box.overlaps(bounds);
     };
 
     std::vector<unsigned int> found;
@@ -79,7 +85,17 @@ namespace clothsim::physics
           continue;
         const ObstacleSurface &surface = *obstacles[o].shape().surface;
         const RigidPose       &pose    = poses[o];
-        Pair                   pair;
+        const double           reach   = margin + offset(o);
+        bounds                         = surface.bounds;
+        for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
+          {
+            const Point<3>          x = cloth.position(p, u_local);
+            std::array<Point<3>, 2> ends{{pose.to_body(x), pose.to_body(x)}};
+            if (step_local != nullptr)
+              ends[1] = pose.to_body(x + cloth.part(p, step_local));
+            vertex_boxes[p] = Box::around(ends);
+          }
+        Pair pair;
         pair.obstacle = o;
 
         // Cloth vertices against the obstacle's triangles.
@@ -91,7 +107,8 @@ namespace clothsim::physics
             if (!cloth.vertices[p].owned)
               continue;
             found.clear();
-            surface.triangle_tree.find(box_of(pose, {p}), found);
+            if (box_of({p}, reach))
+              surface.triangle_tree.find(box, found);
             pair.kappa = cloth.vertices[p].mass * a_per_d;
             for (const unsigned int t : found)
               {
@@ -111,7 +128,8 @@ namespace clothsim::physics
           {
             const auto [a, b] = cloth.edges[e];
             found.clear();
-            surface.edge_tree.find(box_of(pose, {a, b}), found);
+            if (box_of({a, b}, reach))
+              surface.edge_tree.find(box, found);
             pair.kappa =
               0.5 * (cloth.vertices[a].mass + cloth.vertices[b].mass) * a_per_d;
             for (const unsigned int k : found)
@@ -135,9 +153,8 @@ namespace clothsim::physics
         for (const auto &triangle : cloth.triangles)
           {
             found.clear();
-            surface.vertex_tree.find(box_of(pose,
-                                            {triangle[0], triangle[1], triangle[2]}),
-                                     found);
+            if (box_of({triangle[0], triangle[1], triangle[2]}, reach))
+              surface.vertex_tree.find(box, found);
             pair.kappa =
               (cloth.vertices[triangle[0]].mass + cloth.vertices[triangle[1]].mass +
                cloth.vertices[triangle[2]].mass) /
@@ -171,8 +188,16 @@ namespace clothsim::physics
     std::vector<types::global_dof_index> dofs;
     for_each_pair(u_local, nullptr, poses, d_hat, [&](const Pair &pair) {
       const PairPoints  x = pair_points(pair, u_local, poses[pair.obstacle]);
-      const PairBarrier b = pair_barrier(
-        pair.kind, x, pair.moving, pair.kappa, d_hat, pair.threshold, order, projected);
+      const PairBarrier b = pair_barrier(pair.kind,
+                                         x,
+                                         pair.moving,
+                                         pair.kappa,
+                                         d_hat,
+                                         pair.threshold,
+                                         order,
+                                         projected,
+                                         false,
+                                         offset(pair.obstacle));
       value += b.value;
       if (b.n == 0 || !std::isfinite(b.value))
         return;
@@ -219,7 +244,9 @@ namespace clothsim::physics
           if (pair.moving[i])
             for (unsigned int c = 0; c < 3; ++c)
               dx[i][c] = step_local[cloth.vertices[pair.index[i]].local[c]];
-        alpha = std::min(alpha, pair_step_bound(pair.kind, x, dx, fraction));
+        alpha =
+          std::min(alpha,
+                   pair_step_bound(pair.kind, x, dx, fraction, offset(pair.obstacle)));
       },
       only);
     return alpha;
@@ -236,19 +263,23 @@ namespace clothsim::physics
     const double d_hat = settings.thickness;
     for_each_pair(u_local, nullptr, poses, d_hat, [&](const Pair &pair) {
       const PairPoints x = pair_points(pair, u_local, poses[pair.obstacle]);
-      const double     d = std::sqrt(pair_squared_distance(pair.kind, x));
+      const double     r = offset(pair.obstacle);
+      const double     d = std::sqrt(pair_squared_distance(pair.kind, x)) - r;
       min_distance       = std::min(min_distance, d);
       if (d >= d_hat)
         return;
       ++contacts[pair.obstacle];
       const PairBarrier b = pair_barrier(
-        pair.kind, x, pair.moving, pair.kappa, d_hat, pair.threshold, 1, false);
+        pair.kind, x, pair.moving, pair.kappa, d_hat, pair.threshold, 1, false, false, r);
       for (unsigned int i = 0; i < b.n; ++i)
         forces[pair.obstacle][i % 3] -= b.gradient[i];
     });
-    // Beyond d̂: the distance from the nearest owned cloth vertex to each mesh.
+    // Beyond d̂: the distance from the nearest owned cloth vertex to each mesh (the
+    // analytic obstacles' vertex distances are ObstacleContact's).
     for (const unsigned int o : mesh_obstacles)
       {
+        if (obstacles[o].shape().core != ObstacleCore::mesh)
+          continue;
         const ObstacleSurface &surface = *obstacles[o].shape().surface;
         for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
           if (cloth.vertices[p].owned)
@@ -269,12 +300,17 @@ namespace clothsim::physics
 
 
   std::string
-  MeshContact::touching(const double *u_local, const std::vector<RigidPose> &poses) const
+  MeshContact::touching(const double                 *u_local,
+                        const std::vector<RigidPose> &poses,
+                        const bool                    meshes_only) const
   {
     std::string found;
     for_each_pair(u_local, nullptr, poses, settings.thickness, [&](const Pair &pair) {
       const PairPoints x = pair_points(pair, u_local, poses[pair.obstacle]);
-      if (!found.empty() || pair_squared_distance(pair.kind, x) > 0.)
+      if (meshes_only && obstacles[pair.obstacle].shape().core != ObstacleCore::mesh)
+        return;
+      if (!found.empty() ||
+          std::sqrt(pair_squared_distance(pair.kind, x)) > offset(pair.obstacle))
         return;
       const Point<3>     at = x[pair.moving[0] ? 0 : 1];
       std::ostringstream text;
@@ -377,7 +413,7 @@ namespace clothsim::physics
           [&](const Pair &pair) {
             const PairPoints   x    = pair_points(pair, at, poses[o]);
             const DistanceType type = distance_type(pair.kind, x);
-            const double       d    = std::sqrt(squared_distance(type, x));
+            const double       d    = std::sqrt(squared_distance(type, x)) - offset(o);
             if (d >= d_hat || d <= 0.)
               return;
             const std::array<double, 4> w = closest_point_weights(type, x);
@@ -425,6 +461,8 @@ namespace clothsim::physics
   {
     for (const unsigned int o : mesh_obstacles)
       {
+        if (obstacles[o].shape().core != ObstacleCore::mesh)
+          continue;
         const RigidPose &from = start_poses[o], &to = poses[o];
         if (from.rotation == to.rotation && from.translation == to.translation)
           continue;
@@ -439,5 +477,42 @@ namespace clothsim::physics
         for (unsigned int i = 0; i < state.size(); ++i)
           state[i] = carried[i] + alpha * back[i];
       }
+  }
+
+
+  std::vector<types::global_dof_index>
+  MeshContact::pierced(const double                 *guess,
+                       const std::vector<double>    &start,
+                       const std::vector<RigidPose> &start_poses,
+                       const std::vector<RigidPose> &poses,
+                       const double                  fraction,
+                       const unsigned int            o) const
+  {
+    // The start carried along keeps every distance to the obstacle.
+    const std::vector<double> carried = carried_along(start, start_poses[o], poses[o]);
+    const double              r       = offset(o);
+    std::vector<types::global_dof_index> result;
+    for_each_pair(
+      guess,
+      nullptr,
+      poses,
+      settings.thickness,
+      [&](const Pair &pair) {
+        const double d =
+          std::sqrt(
+            pair_squared_distance(pair.kind, pair_points(pair, guess, poses[o]))) -
+          r;
+        const double d0 =
+          std::sqrt(pair_squared_distance(pair.kind,
+                                          pair_points(pair, carried.data(), poses[o]))) -
+          r;
+        if (d0 <= 0. || d > fraction * d0)
+          return;
+        for (unsigned int i = 0; i < 4; ++i)
+          if (pair.moving[i])
+            result.push_back(cloth.vertices[pair.index[i]].dofs[0]);
+      },
+      o);
+    return result;
   }
 } // namespace clothsim::physics

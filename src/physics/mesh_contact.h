@@ -73,9 +73,25 @@ namespace clothsim::physics
            std::vector<unsigned int>    &contacts) const;
 
     // A pair at distance 0, a cloth edge through an obstacle's triangle or an obstacle's
-    // edge through a cloth triangle at u, described; empty if none on this rank.
+    // edge through a cloth triangle at u, described; empty if none on this rank. Only the
+    // mesh obstacles' if `meshes_only`.
     std::string
-    touching(const double *u_local, const std::vector<RigidPose> &poses) const;
+    touching(const double                 *u_local,
+             const std::vector<RigidPose> &poses,
+             const bool                    meshes_only = false) const;
+
+    // For the analytic obstacle o's core features (a step's feasible start): the first
+    // dof of every cloth vertex of a pair whose distance at `guess` (ghosted values) is
+    // at most `fraction` of its distance at the step's start `start` carried along with
+    // the obstacle from `start_poses` to `poses` (which keeps it). Such vertices must
+    // ride along with the obstacle. This rank's pairs; a vertex may be listed repeatedly.
+    std::vector<types::global_dof_index>
+    pierced(const double                 *guess,
+            const std::vector<double>    &start,
+            const std::vector<RigidPose> &start_poses,
+            const std::vector<RigidPose> &poses,
+            const double                  fraction,
+            const unsigned int            o) const;
 
     // Friction data (appended to `lagged`) of every pair within d̂, the obstacles at
     // `poses`: for each mesh obstacle with friction, at u (`u_local`; if null, at the
@@ -112,6 +128,11 @@ namespace clothsim::physics
       double              threshold; // the mollifier's (edge-edge), else 0
     };
 
+    // What obstacle o's pair distances lose: its core's radius r for an analytic
+    // obstacle (a pair of its core's features), 0 for a mesh.
+    double
+    offset(const unsigned int o) const;
+
     // `state` with every cloth point carried along with an obstacle from `from` to `to`.
     std::vector<double>
     carried_along(const std::vector<double> &state,
@@ -135,7 +156,9 @@ namespace clothsim::physics
     const std::vector<Obstacle> &obstacles;
     const MPI_Comm               communicator;
     const ContactSettings       &settings;
-    std::vector<unsigned int>    mesh_obstacles; // indices into `obstacles`
-    ClothSurface                 cloth;
+    // Indices into `obstacles` of those with a surface: the meshes, and the analytic
+    // obstacles' core features (physics/obstacle.h).
+    std::vector<unsigned int> mesh_obstacles;
+    ClothSurface              cloth;
   };
 } // namespace clothsim::physics

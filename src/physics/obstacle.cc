@@ -1,6 +1,7 @@
 #include "physics/obstacle.h"
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/numbers.h>
 
 #include <algorithm>
 #include <cmath>
@@ -71,6 +72,36 @@ namespace clothsim::physics
                   (ds * ds / rho3) * outer_product(a, a) +
                   (f_s / s) * (identity() - outer_product(a, a) - outer_product(e, e));
       return d;
+    }
+
+    // The minimum of a convex function f on [lo, hi] by golden-section search, to an
+    // interval shorter than `tolerance` (at most 60 halvings of the golden ratio):
+    // (where, value), `where` the lower end of the last interval.
+    template <typename Function>
+    std::pair<double, double>
+    convex_minimum(const Function &f, double lo, double hi, const double tolerance)
+    {
+      const double golden = 0.5 * (std::sqrt(5.) - 1.);
+      double       m1 = hi - golden * (hi - lo), m2 = lo + golden * (hi - lo);
+      double       f1 = f(m1), f2 = f(m2);
+      for (unsigned int i = 0; i < 60 && hi - lo > tolerance; ++i)
+        if (f1 <= f2)
+          {
+            hi = m2;
+            m2 = m1;
+            f2 = f1;
+            m1 = hi - golden * (hi - lo);
+            f1 = f(m1);
+          }
+        else
+          {
+            lo = m1;
+            m1 = m2;
+            f1 = f2;
+            m2 = lo + golden * (hi - lo);
+            f2 = f(m2);
+          }
+      return {lo, std::min({f(lo), f1, f2})};
     }
   } // namespace
 
@@ -148,6 +179,66 @@ namespace clothsim::physics
   }
 
 
+  std::shared_ptr<const ObstacleSurface>
+  core_features(const ObstacleShape &shape)
+  {
+    std::vector<Point<3>>                    vertices;
+    std::vector<std::array<unsigned int, 2>> edges;
+    const Point<3>                          &c = shape.center;
+    switch (shape.core)
+      {
+        case ObstacleCore::half_space:
+        case ObstacleCore::mesh:
+          return nullptr;
+        case ObstacleCore::point:
+          vertices = {c};
+          break;
+        case ObstacleCore::segment:
+          vertices = {c - shape.half_length * shape.axis,
+                      c + shape.half_length * shape.axis};
+          edges    = {{{0, 1}}};
+          break;
+          case ObstacleCore::box: {
+            // Corner k has the sign of bit i of k along body axis i.
+            for (unsigned int k = 0; k < 8; ++k)
+              {
+                Point<3> corner = c;
+                for (unsigned int i = 0; i < 3; ++i)
+                  corner[i] += ((k >> i) & 1 ? 1. : -1.) * shape.half_extents[i];
+                vertices.push_back(corner);
+              }
+            for (unsigned int k = 0; k < 8; ++k)
+              for (unsigned int i = 0; i < 3; ++i)
+                if (((k >> i) & 1) == 0)
+                  edges.push_back({{k, k | (1u << i)}});
+            break;
+          }
+          case ObstacleCore::disc: {
+            // A chord of angle 2π/M lies R (1 - cos(π/M)) inside the circle.
+            const double R         = shape.disc_radius;
+            const double tolerance = 1e-3 * std::max(shape.radius, 1e-3 * R);
+            const auto   M         = static_cast<unsigned int>(
+              std::ceil(numbers::PI / std::acos(1. - std::min(tolerance / R, 1.))));
+            Tensor<1, 3> e[2];
+            Tensor<1, 3> helper;
+            helper[std::abs(shape.axis[0]) < 0.9 ? 0 : 1] = 1.;
+            e[0] = helper - (helper * shape.axis) * shape.axis;
+            e[0] /= e[0].norm();
+            e[1] = cross_product_3d(shape.axis, e[0]);
+            for (unsigned int k = 0; k < std::max(M, 3u); ++k)
+              {
+                const double phi = 2. * numbers::PI * k / std::max(M, 3u);
+                vertices.push_back(c + R * (std::cos(phi) * e[0] + std::sin(phi) * e[1]));
+                edges.push_back({{k, (k + 1) % std::max(M, 3u)}});
+              }
+            break;
+          }
+      }
+    return std::make_shared<const ObstacleSurface>(
+      std::move(vertices), std::vector<std::array<unsigned int, 3>>(), std::move(edges));
+  }
+
+
   Obstacle::Obstacle(const std::string                        &name,
                      const ObstacleShape                      &shape,
                      const double                              friction,
@@ -222,31 +313,8 @@ namespace clothsim::physics
         const double rate = body_shape.axis * dy;
         return rate >= 0. ? 1. : std::min(1., (d0 - level) / -rate);
       }
-    // d(s) is convex: golden-section search for its minimum on [0, 1].
-    const double golden = 0.5 * (std::sqrt(5.) - 1.);
-    double       lo = 0., hi = 1.;
-    double       m1 = hi - golden * (hi - lo), m2 = lo + golden * (hi - lo);
-    double       f1 = d(m1), f2 = d(m2);
-    for (unsigned int i = 0; i < 60 && hi - lo > 1e-12; ++i)
-      {
-        if (f1 <= f2)
-          {
-            hi = m2;
-            m2 = m1;
-            f2 = f1;
-            m1 = hi - golden * (hi - lo);
-            f1 = d(m1);
-          }
-        else
-          {
-            lo = m1;
-            m1 = m2;
-            f1 = f2;
-            m2 = lo + golden * (hi - lo);
-            f2 = d(m2);
-          }
-      }
-    const double s_min = lo;
+    // d(s) is convex: its minimum on [0, 1].
+    const double s_min = convex_minimum(d, 0., 1., 1e-12).first;
     if (d(s_min) > level && d(1.) > level)
       return 1.;
     // The first crossing lies in [0, s_min] (or [0, 1]), where d decreases: bisect.
@@ -257,5 +325,30 @@ namespace clothsim::physics
         (d(middle) > level ? above : below) = middle;
       }
     return above;
+  }
+
+
+  double
+  Obstacle::triangle_distance(const RigidPose               &pose,
+                              const std::array<Point<3>, 3> &x,
+                              const double                   tolerance) const
+  {
+    const Point<3>     y0 = pose.to_body(x[0]);
+    const Tensor<1, 3> e1 = pose.to_body(x[1]) - y0, e2 = pose.to_body(x[2]) - y0;
+    const auto         d = [&](const double a, const double b) {
+      return signed_distance(body_shape, Point<3>(y0 + a * e1 + b * e2), false).value;
+    };
+    // Affine along the triangle: its minimum is at a corner.
+    if (body_shape.core == ObstacleCore::half_space)
+      return std::min({d(0., 0.), d(1., 0.), d(0., 1.)});
+    // f(a, b) = d(y0 + a e1 + b e2) over a, b >= 0, a + b <= 1; an interval of length
+    // τ/|e| in a barycentric coordinate moves the point by less than τ.
+    const double longest = std::max({e1.norm(), e2.norm(), (e2 - e1).norm()});
+    const double step    = tolerance / std::max(longest, tolerance);
+    const auto   over_b  = [&](const double a) {
+      return convex_minimum([&](const double b) { return d(a, b); }, 0., 1. - a, step)
+        .second;
+    };
+    return convex_minimum(over_b, 0., 1., step).second;
   }
 } // namespace clothsim::physics

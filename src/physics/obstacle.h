@@ -11,13 +11,18 @@
 // body frame; a rigid motion x = R(t) (y - c) + c + T(t) (rotation by an angle θ(t) about
 // a fixed axis through the shape's centre c, then a translation) places them in the
 // world. A triangle-mesh obstacle moves the same way; its contact is by pairs of
-// primitives (physics/obstacle_surface.h).
+// primitives (physics/obstacle_surface.h). The cloth's vertices meet a shape through d;
+// with edge contact, its edges and triangles also meet the core's features (the
+// sphere's centre, the capsule's segment, the box's corners and edges, the disc's rim as
+// a closed polyline within 1e-3 r of the circle; core_features(), given as the shape's
+// surface) by the same pairs, their distances less r.
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
 #include "physics/obstacle_surface.h"
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -45,8 +50,15 @@ namespace clothsim::physics
     double       disc_radius = 0.;                  // disc, m
     Tensor<1, 3> half_extents;                      // box, along the body axes, m
     double       radius = 0.;                       // r, m (0 for the plane)
-    std::shared_ptr<const ObstacleSurface> surface; // mesh, in the body frame
+    std::shared_ptr<const ObstacleSurface> surface; // mesh, or the core's features
   };
+
+  // The core's sharp features in the body frame as a surface of vertices and edges (no
+  // triangles: a flat face cannot pass between the cloth's vertices): a point, a
+  // segment, a box's 8 corners and 12 edges, a disc's rim as a closed polyline whose
+  // chords stay within 1e-3 r of the circle. None for a plane or a mesh.
+  std::shared_ptr<const ObstacleSurface>
+  core_features(const ObstacleShape &shape);
 
   // A signed distance (m) with its gradient (unit outside the core) and Hessian.
   struct SignedDistance
@@ -123,6 +135,16 @@ namespace clothsim::physics
                const Point<3>     &x,
                const Tensor<1, 3> &dx,
                const double        fraction) const;
+
+    // The smallest d over the triangle with corners x (world frame), the obstacle at
+    // `pose`, to within `tolerance` (m; from above): between its corners a triangle can
+    // come closer than they do, e.g. to a sphere or rod narrower than the triangle. The
+    // signed distance of a convex set is convex, and so is its minimum over one
+    // barycentric coordinate: nested golden-section searches.
+    double
+    triangle_distance(const RigidPose               &pose,
+                      const std::array<Point<3>, 3> &x,
+                      const double                   tolerance) const;
 
   private:
     const std::string                         obstacle_name;

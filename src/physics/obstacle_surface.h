@@ -21,6 +21,7 @@ namespace clothsim::physics
       , triangles(std::move(triangles_in))
       , edges(std::move(edges_in))
     {
+      bounds = Box::around(vertices);
       std::vector<Box> boxes;
       for (const Point<3> &v : vertices)
         boxes.push_back(Box{v, v});
@@ -41,5 +42,6 @@ namespace clothsim::physics
     std::vector<std::array<unsigned int, 3>> triangles;
     std::vector<std::array<unsigned int, 2>> edges;
     AabbTree                                 vertex_tree, edge_tree, triangle_tree;
+    Box                                      bounds; // around every vertex
   };
 } // namespace clothsim::physics

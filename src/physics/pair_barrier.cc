@@ -10,8 +10,8 @@ namespace clothsim::physics
 {
   namespace
   {
-    // κ m(x) s(d) on any number type (the mollifier if threshold > 0); `distance`, if
-    // non-null, gets d.
+    // κ m(x) s(d) on any number type (the mollifier if threshold > 0), d the pair's
+    // distance less `offset`; `distance`, if non-null, gets d.
     template <typename Number>
     Number
     potential(const DistanceType                         &type,
@@ -19,11 +19,12 @@ namespace clothsim::physics
               const double                                kappa,
               const double                                d_hat,
               const double                                threshold,
+              const double                                offset,
               Number                                     *distance = nullptr)
     {
       using std::log;
       using std::sqrt;
-      const Number d = sqrt(squared_distance<Number>(type.form, X, type.points));
+      const Number d = sqrt(squared_distance<Number>(type.form, X, type.points)) - offset;
       if (distance != nullptr)
         *distance = d;
       Number s = -(d - d_hat) * (d - d_hat) * log(d / d_hat);
@@ -50,6 +51,7 @@ namespace clothsim::physics
                   const double               kappa,
                   const double               d_hat,
                   const double               threshold,
+                  const double               offset,
                   const bool                 hessian,
                   PairBarrier               &result,
                   std::array<double, 12>    &distance_gradient)
@@ -70,7 +72,7 @@ namespace clothsim::physics
                 }
               else
                 X[i][c] = Outer(Inner(x[i][c]));
-          const Outer phi = potential(type, X, kappa, d_hat, threshold);
+          const Outer phi = potential(type, X, kappa, d_hat, threshold, offset);
           result.value    = phi.val().val();
           for (unsigned int i = 0; i < N; ++i)
             {
@@ -87,7 +89,7 @@ namespace clothsim::physics
         for (unsigned int c = 0; c < 3; ++c)
           X[i][c] = active[i] ? Number(N, k++, x[i][c]) : Number(x[i][c]);
       Number       d;
-      const Number phi = potential(type, X, kappa, d_hat, threshold, &d);
+      const Number phi = potential(type, X, kappa, d_hat, threshold, offset, &d);
       result.value     = phi.val();
       for (unsigned int i = 0; i < N; ++i)
         {
@@ -107,12 +109,13 @@ namespace clothsim::physics
                const double               threshold,
                const unsigned int         order,
                const bool                 project,
-               const bool                 gauss_newton_mollified)
+               const bool                 gauss_newton_mollified,
+               const double               offset)
   {
     const bool         hessian = order >= 2;
     const DistanceType type    = distance_type(kind, x);
     PairBarrier        result;
-    const double       d = std::sqrt(squared_distance(type, x));
+    const double       d = std::sqrt(squared_distance(type, x)) - offset;
     if (d >= d_hat || d <= 0.)
       {
         result.value = kappa * contact::barrier(d, d_hat);
@@ -124,7 +127,7 @@ namespace clothsim::physics
         for (unsigned int i = 0; i < 4; ++i)
           for (unsigned int c = 0; c < 3; ++c)
             X[i][c] = x[i][c];
-        result.value = potential(type, X, kappa, d_hat, threshold);
+        result.value = potential(type, X, kappa, d_hat, threshold, offset);
         return result;
       }
     // Only the points of the distance's form (all four while the mollifier acts) have
@@ -157,27 +160,59 @@ namespace clothsim::physics
     switch (n_active)
       {
         case 1:
-          differentiate<3>(
-            type, x, active, kappa, d_hat, threshold, nested, reduced, distance_gradient);
+          differentiate<3>(type,
+                           x,
+                           active,
+                           kappa,
+                           d_hat,
+                           threshold,
+                           offset,
+                           nested,
+                           reduced,
+                           distance_gradient);
           break;
         case 2:
-          differentiate<6>(
-            type, x, active, kappa, d_hat, threshold, nested, reduced, distance_gradient);
+          differentiate<6>(type,
+                           x,
+                           active,
+                           kappa,
+                           d_hat,
+                           threshold,
+                           offset,
+                           nested,
+                           reduced,
+                           distance_gradient);
           break;
         case 3:
-          differentiate<9>(
-            type, x, active, kappa, d_hat, threshold, nested, reduced, distance_gradient);
+          differentiate<9>(type,
+                           x,
+                           active,
+                           kappa,
+                           d_hat,
+                           threshold,
+                           offset,
+                           nested,
+                           reduced,
+                           distance_gradient);
           break;
         case 4:
-          differentiate<12>(
-            type, x, active, kappa, d_hat, threshold, nested, reduced, distance_gradient);
+          differentiate<12>(type,
+                            x,
+                            active,
+                            kappa,
+                            d_hat,
+                            threshold,
+                            offset,
+                            nested,
+                            reduced,
+                            distance_gradient);
           break;
           default: {
             std::array<std::array<double, 3>, 4> X;
             for (unsigned int i = 0; i < 4; ++i)
               for (unsigned int c = 0; c < 3; ++c)
                 X[i][c] = x[i][c];
-            reduced.value = potential(type, X, kappa, d_hat, threshold);
+            reduced.value = potential(type, X, kappa, d_hat, threshold, offset);
           }
       }
     if (gauss_newton && n_active > 0 && !mollified)

@@ -31,7 +31,8 @@ namespace clothsim::physics
 
   // κ (N/m), d̂ (m), `mollifier_threshold` ε_x (m⁴; 0: no mollifier). `moving`: which
   // of the four points are unknowns. `order`: 0 the value, 1 also the gradient, 2 also
-  // the Hessian. Zero beyond d̂, infinite at d = 0.
+  // the Hessian. Zero beyond d̂, infinite at d = 0. With an `offset` r (m), d is the
+  // pair's distance less r: the pair of an obstacle's core inflated by r.
   PairBarrier
   pair_barrier(const PairKind             kind,
                const PairPoints          &x,
@@ -41,7 +42,8 @@ namespace clothsim::physics
                const double               mollifier_threshold,
                const unsigned int         order,
                const bool                 project,
-               const bool                 gauss_newton_mollified = false);
+               const bool                 gauss_newton_mollified = false,
+               const double               offset                 = 0.);
 
   // m(x) for x = |ea × eb|² (m⁴) and its threshold ε_x.
   inline double

@@ -201,11 +201,12 @@ namespace clothsim::physics
   pair_step_bound(const PairKind    kind,
                   const PairPoints &x,
                   const PairPoints &dx,
-                  const double      fraction)
+                  const double      fraction,
+                  const double      offset)
   {
     const double L = pair_motion_bound(kind, dx);
 
-    const double d0  = std::sqrt(pair_squared_distance(kind, x));
+    const double d0  = std::sqrt(pair_squared_distance(kind, x)) - offset;
     const double gap = fraction * d0;
     if (L <= d0 - gap)
       return 1.;
@@ -220,7 +221,7 @@ namespace clothsim::physics
           return 1.;
         for (unsigned int i = 0; i < 4; ++i)
           y[i] = x[i] + next * dx[i];
-        d = std::sqrt(pair_squared_distance(kind, y));
+        d = std::sqrt(pair_squared_distance(kind, y)) - offset;
         s = next;
         if (d < 1.25 * gap)
           break;

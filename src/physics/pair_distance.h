@@ -161,10 +161,12 @@ namespace clothsim::physics
   // L the largest motion of a point of one primitive plus that of the other, so
   // advancing by (d - fraction d0) / L cannot cross; the advance repeats until d is
   // within a quarter of fraction d0 above it, s reaches 1, or after 100 advances.
-  // Conservative. `x` must have a positive distance.
+  // Conservative. `x` must have a positive distance. With an `offset` r (m) the distance
+  // is the pair's less r (an obstacle's core inflated by r).
   double
   pair_step_bound(const PairKind    kind,
                   const PairPoints &x,
                   const PairPoints &dx,
-                  const double      fraction);
+                  const double      fraction,
+                  const double      offset = 0.);
 } // namespace clothsim::physics

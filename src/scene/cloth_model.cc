@@ -339,11 +339,13 @@ namespace clothsim
           std::find(columns.begin(), columns.end(), term->report_column()) ==
             columns.end())
         columns.push_back(term->report_column());
-    // Contact: the smallest vertex-obstacle distance (m), then per obstacle the force on
-    // the cloth (N) and the vertices within the thickness.
+    // Contact: the smallest distance from an obstacle of what contact keeps off them
+    // and of the whole surface (m), then per obstacle the force on the cloth (N) and the
+    // vertices and pairs within the thickness.
     if (contact != nullptr)
       {
         columns.push_back("contact_min_distance");
+        columns.push_back("contact_surface_distance");
         for (const physics::Obstacle &obstacle : contact->get_obstacles())
           {
             std::string name = obstacle.name();
@@ -397,8 +399,9 @@ namespace clothsim
       {
         const physics::ObstacleContact::Report contacts =
           contact->report(u, contact->time_of_state());
-        column -= 1 + 4 * contacts.forces.size();
+        column -= 2 + 4 * contacts.forces.size();
         energies.columns[column++] = contacts.min_distance;
+        energies.columns[column++] = contacts.min_surface_distance;
         for (unsigned int o = 0; o < contacts.forces.size(); ++o)
           {
             for (unsigned int c = 0; c < 3; ++c)

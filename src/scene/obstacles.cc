@@ -46,6 +46,8 @@ namespace clothsim
               std::move(surface.triangles),
               std::move(surface.edges));
           }
+        else if (parameters.edge_contact)
+          shape.surface = physics::core_features(shape);
 
         // Expressions of t (x, y, z are there but 0: the motion is rigid).
         const std::string section     = "Obstacle " + std::to_string(k + 1);
