@@ -19,7 +19,8 @@
 //    100 triangles per shape; the core's features less r (physics::core_features) give
 //    the signed distance where the closest point of the core is on them (every point of
 //    a sphere's or a capsule's core: to 1e-12 m; a box's edges and corners: 1e-12 m; a
-//    disc's rim: 1e-3 r), and never less than it.
+//    disc's rim, a polygon around the circle: its tolerance, 1e-5 m), and never more
+//    than that less.
 
 #include "contact_checks.h"
 #include "physics/contact_potential.h"
@@ -325,7 +326,7 @@ namespace
 
         // The features less r against d, in the body frame.
         const std::shared_ptr<const physics::ObstacleSurface> features =
-          physics::core_features(shape);
+          physics::core_features(shape, 1e-5);
         double differs = 0., less = 0.;
         for (unsigned int k = 0; k < 2000; ++k)
           {
@@ -356,8 +357,7 @@ namespace
             if (on_feature)
               differs = std::max(differs, std::abs(f - d));
           }
-        const double tolerance =
-          shape.core == ObstacleCore::disc ? 1e-3 * shape.radius : 1e-12;
+        const double tolerance = shape.core == ObstacleCore::disc ? 1e-5 : 1e-12;
         passed &= check_below(pcout,
                               name + ": d below the features' distance less r, m",
                               less,

@@ -6,12 +6,14 @@
 // z = -15 mm cos 6θ (r - 9 cm)/6 cm, at rest at 2.5 s. Checked:
 // - every run finishes without a step halving and no vertex ever reaches the disc;
 // - DC rises monotonically under refinement by √2, its differences shrink, and the
-//   observed order log(d_1/d_2)/log √2 lies in [0.5, 3] (measured 1.71; DC∞ − C h^p
-//   fitted to five levels down to h = 2.5 mm gives p = 1.25 ± 0.16, README "Contact with
+//   observed order log(d_1/d_2)/log √2 lies in [0.5, 3] (measured 1.58 with edge
+//   contact, 1.71 with vertex contact alone; DC∞ − C h^p fitted to five levels down to
+//   h = 2.5 mm with vertex contact gives p = 1.25 ± 0.16, README "Contact with
 //   obstacles");
 // - Richardson's extrapolation from the two finer levels with the five levels' order
-//   1.25 lies within 0.02 of 0.707, the limit of that fit (measured 0.699). The observed
-//   order itself is not used for it: a mesh moved by 1e-6 h changes DC by 0.002 at one
+//   1.25 lies within 0.02 of 0.707, the limit of that fit (measured 0.696; 0.699 with
+//   vertex contact alone). The observed order itself is not used for it: a mesh moved
+//   by 1e-6 h changes DC by 0.002 at one
 //   level (several nearby equilibria with six folds), which moves the three levels' order
 //   between 1.3 and 1.7 and their own Richardson limit between 0.700 and 0.685, but this
 //   extrapolation by less than 0.004. The order's bounds leave room for 0.005 at the

@@ -180,7 +180,7 @@ namespace clothsim::physics
 
 
   std::shared_ptr<const ObstacleSurface>
-  core_features(const ObstacleShape &shape)
+  core_features(const ObstacleShape &shape, const double tolerance)
   {
     std::vector<Point<3>>                    vertices;
     std::vector<std::array<unsigned int, 2>> edges;
@@ -214,22 +214,27 @@ namespace clothsim::physics
             break;
           }
           case ObstacleCore::disc: {
-            // A chord of angle 2π/M lies R (1 - cos(π/M)) inside the circle.
-            const double R         = shape.disc_radius;
-            const double tolerance = 1e-3 * std::max(shape.radius, 1e-3 * R);
-            const auto   M         = static_cast<unsigned int>(
-              std::ceil(numbers::PI / std::acos(1. - std::min(tolerance / R, 1.))));
-            Tensor<1, 3> e[2];
-            Tensor<1, 3> helper;
+            // M sides circumscribing the circle: they touch it at their midpoints and
+            // their corners lie R (1/cos(π/M) - 1) outside it. The polygon holds the
+            // circle, so no point is farther from it than from the circle: what the
+            // pairs keep off the polygon is off the rim.
+            const double R = shape.disc_radius;
+            const auto   n = static_cast<unsigned int>(
+              std::ceil(numbers::PI / std::acos(R / (R + tolerance))));
+            const unsigned int M      = std::max(n, 3u);
+            const double       corner = R / std::cos(numbers::PI / M);
+            Tensor<1, 3>       e[2];
+            Tensor<1, 3>       helper;
             helper[std::abs(shape.axis[0]) < 0.9 ? 0 : 1] = 1.;
             e[0] = helper - (helper * shape.axis) * shape.axis;
             e[0] /= e[0].norm();
             e[1] = cross_product_3d(shape.axis, e[0]);
-            for (unsigned int k = 0; k < std::max(M, 3u); ++k)
+            for (unsigned int k = 0; k < M; ++k)
               {
-                const double phi = 2. * numbers::PI * k / std::max(M, 3u);
-                vertices.push_back(c + R * (std::cos(phi) * e[0] + std::sin(phi) * e[1]));
-                edges.push_back({{k, (k + 1) % std::max(M, 3u)}});
+                const double phi = 2. * numbers::PI * k / M;
+                vertices.push_back(c + corner *
+                                         (std::cos(phi) * e[0] + std::sin(phi) * e[1]));
+                edges.push_back({{k, (k + 1) % M}});
               }
             break;
           }

@@ -14,8 +14,8 @@
 // primitives (physics/obstacle_surface.h). The cloth's vertices meet a shape through d;
 // with edge contact, its edges and triangles also meet the core's features (the
 // sphere's centre, the capsule's segment, the box's corners and edges, the disc's rim as
-// a closed polyline within 1e-3 r of the circle; core_features(), given as the shape's
-// surface) by the same pairs, their distances less r.
+// a polygon around the circle; core_features(), given as the shape's surface) by the
+// same pairs, their distances less r.
 
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
@@ -55,10 +55,10 @@ namespace clothsim::physics
 
   // The core's sharp features in the body frame as a surface of vertices and edges (no
   // triangles: a flat face cannot pass between the cloth's vertices): a point, a
-  // segment, a box's 8 corners and 12 edges, a disc's rim as a closed polyline whose
-  // chords stay within 1e-3 r of the circle. None for a plane or a mesh.
+  // segment, a box's 8 corners and 12 edges, a disc's rim as a polygon around the
+  // circle whose corners lie within `tolerance` (m) of it. None for a plane or a mesh.
   std::shared_ptr<const ObstacleSurface>
-  core_features(const ObstacleShape &shape);
+  core_features(const ObstacleShape &shape, const double tolerance);
 
   // A signed distance (m) with its gradient (unit outside the core) and Hessian.
   struct SignedDistance

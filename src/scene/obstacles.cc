@@ -47,7 +47,8 @@ namespace clothsim
               std::move(surface.edges));
           }
         else if (parameters.edge_contact)
-          shape.surface = physics::core_features(shape);
+          // The rim's chords within 1 % of the contact thickness of the circle.
+          shape.surface = physics::core_features(shape, 1e-2 * parameters.thickness);
 
         // Expressions of t (x, y, z are there but 0: the motion is rigid).
         const std::string section     = "Obstacle " + std::to_string(k + 1);
