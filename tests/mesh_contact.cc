@@ -211,10 +211,13 @@ namespace
                   mollified ? physics::mollifier_threshold(x[0].distance(x[1]),
                                                            x[2].distance(x[3]))
                             : 0.;
-                const physics::PairBarrier b = physics::pair_barrier(
-                  kind, x, masks[m], kappa, d_hat, threshold, 2, false, false, offset);
-                const double h = 1e-8;
-                unsigned int k = 0;
+                const auto barrier_at = [&](const PairPoints &y) {
+                  return physics::pair_barrier(
+                    kind, y, masks[m], kappa, d_hat, threshold, 2, false, false, offset);
+                };
+                const physics::PairBarrier b = barrier_at(x);
+                const double               h = 1e-8;
+                unsigned int               k = 0;
                 for (unsigned int i = 0; i < 4; ++i)
                   if (masks[m][i])
                     for (unsigned int c = 0; c < 3; ++c, ++k)
@@ -222,26 +225,8 @@ namespace
                         PairPoints plus = x, minus = x;
                         plus[i][c] += h;
                         minus[i][c] -= h;
-                        const auto bp      = physics::pair_barrier(kind,
-                                                              plus,
-                                                              masks[m],
-                                                              kappa,
-                                                              d_hat,
-                                                              threshold,
-                                                              2,
-                                                              false,
-                                                              false,
-                                                              offset);
-                        const auto bm      = physics::pair_barrier(kind,
-                                                              minus,
-                                                              masks[m],
-                                                              kappa,
-                                                              d_hat,
-                                                              threshold,
-                                                              2,
-                                                              false,
-                                                              false,
-                                                              offset);
+                        const auto bp      = barrier_at(plus);
+                        const auto bm      = barrier_at(minus);
                         double     g_scale = 0., h_scale = 0.;
                         for (unsigned int j = 0; j < b.n; ++j)
                           {

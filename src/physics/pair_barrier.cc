@@ -5,6 +5,7 @@
 #include <Sacado.hpp>
 
 #include <cmath>
+#include <type_traits>
 
 namespace clothsim::physics
 {
@@ -157,55 +158,32 @@ namespace clothsim::physics
     const bool             nested = hessian && !gauss_newton;
     PairBarrier            reduced;
     std::array<double, 12> distance_gradient{};
+    // differentiate<N> for the N = 3 n_active coordinates of the active points.
+    const auto differentiate_active = [&](auto points) {
+      differentiate<3 * decltype(points)::value>(type,
+                                                 x,
+                                                 active,
+                                                 kappa,
+                                                 d_hat,
+                                                 threshold,
+                                                 offset,
+                                                 nested,
+                                                 reduced,
+                                                 distance_gradient);
+    };
     switch (n_active)
       {
         case 1:
-          differentiate<3>(type,
-                           x,
-                           active,
-                           kappa,
-                           d_hat,
-                           threshold,
-                           offset,
-                           nested,
-                           reduced,
-                           distance_gradient);
+          differentiate_active(std::integral_constant<int, 1>());
           break;
         case 2:
-          differentiate<6>(type,
-                           x,
-                           active,
-                           kappa,
-                           d_hat,
-                           threshold,
-                           offset,
-                           nested,
-                           reduced,
-                           distance_gradient);
+          differentiate_active(std::integral_constant<int, 2>());
           break;
         case 3:
-          differentiate<9>(type,
-                           x,
-                           active,
-                           kappa,
-                           d_hat,
-                           threshold,
-                           offset,
-                           nested,
-                           reduced,
-                           distance_gradient);
+          differentiate_active(std::integral_constant<int, 3>());
           break;
         case 4:
-          differentiate<12>(type,
-                            x,
-                            active,
-                            kappa,
-                            d_hat,
-                            threshold,
-                            offset,
-                            nested,
-                            reduced,
-                            distance_gradient);
+          differentiate_active(std::integral_constant<int, 4>());
           break;
           default: {
             std::array<std::array<double, 3>, 4> X;
