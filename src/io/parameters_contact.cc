@@ -55,7 +55,7 @@ namespace clothsim
       "rod, rim or box edge narrower than the cloth's triangles passes between the "
       "vertices: up to h²/(8 r) into an obstacle of radius r under triangles of edge "
       "h, or right through a thin rod. Planes need no edge contact; mesh obstacles "
-      "always have it. Measured (README, Contact with obstacles): 1.1 to 2.0 times "
+      "always have it. Measured (README, Contact with obstacles): 1.1 to 1.3 times "
       "the run time of the shipped scenes; obstacles moving by more than their size "
       "in a step may need it off (Newton then stalls on the pairs' step cap).");
     prm.declare_entry(
