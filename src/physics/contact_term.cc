@@ -48,8 +48,7 @@ namespace clothsim::physics
   {
     discretization.initialize_ghosted(step_start);
     // The owned vertices, in the order of their first triangle.
-    surface = ClothSurface(discretization, lumped_masses);
-    for (const ClothSurface::Vertex &vertex : surface.vertices)
+    for (const ClothSurface::Vertex &vertex : mesh_pairs.cloth_surface().vertices)
       if (vertex.owned)
         table.push_back(
           {vertex.dofs,
@@ -458,7 +457,8 @@ namespace clothsim::physics
                                              const std::vector<RigidPose> &poses,
                                              double &min_distance) const
   {
-    const double tolerance = 1e-3 * settings.thickness;
+    const double        tolerance = 1e-3 * settings.thickness;
+    const ClothSurface &surface   = mesh_pairs.cloth_surface();
     for (const std::array<unsigned int, 3> &triangle : surface.triangles)
       {
         const std::array<Point<3>, 3> x = {{surface.position(triangle[0], u_local),

@@ -272,7 +272,6 @@ namespace clothsim::physics
     const std::vector<Obstacle> obstacles;
     const ContactSettings       settings;
     const mesh::Discretization &discretization;
-    ClothSurface                surface; // this rank's triangles and their vertices
     std::vector<Vertex>         table;
     std::vector<LaggedContact>  lagged;
     // Per vertex and obstacle (vertex-major), the step-start position carried along with

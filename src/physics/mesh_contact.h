@@ -41,6 +41,13 @@ namespace clothsim::physics
       return mesh_obstacles.empty();
     }
 
+    // The cloth as a surface: this rank's triangles and their vertices.
+    const ClothSurface &
+    cloth_surface() const
+    {
+      return cloth;
+    }
+
     // This rank's barrier at u (`u_local`: a ghosted vector's values), the obstacles at
     // `poses` (all obstacles'), with its gradient and Hessian (projected to positive
     // semi-definite if `projected`) distributed through `constraints` if non-null.
