@@ -334,6 +334,7 @@ namespace clothsim
     double       barrier_acceleration;         // a_b, m/s²
     double       slip_velocity;                // ε_v, m/s
     bool         edge_contact;                 // cloth edges/triangles vs core features
+    bool         edge_contact_projected_exact; // their tangent: exact Hessian projected
     unsigned int friction_updates;             // solves per step
     bool         self_contact;                 // the cloth with itself
     bool         self_contact_full_pairs;      // whole pair Hessians in the tangent

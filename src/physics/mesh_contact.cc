@@ -187,17 +187,22 @@ namespace clothsim::physics
     FullMatrix<double> H;
     std::vector<types::global_dof_index> dofs;
     for_each_pair(u_local, nullptr, poses, d_hat, [&](const Pair &pair) {
-      const PairPoints  x = pair_points(pair, u_local, poses[pair.obstacle]);
-      const PairBarrier b = pair_barrier(pair.kind,
+      const PairPoints  x    = pair_points(pair, u_local, poses[pair.obstacle]);
+      const double      r    = offset(pair.obstacle);
+      const PairHessian form = !projected ? PairHessian::exact
+                               : r > 0. && settings.core_pairs_projected_exact
+                                 ? PairHessian::projected
+                                 : PairHessian::gauss_newton;
+      const PairBarrier b    = pair_barrier(pair.kind,
                                          x,
                                          pair.moving,
                                          pair.kappa,
                                          d_hat,
                                          pair.threshold,
                                          order,
-                                         projected,
+                                         form,
                                          false,
-                                         offset(pair.obstacle));
+                                         r);
       value += b.value;
       if (b.n == 0 || !std::isfinite(b.value))
         return;
@@ -269,8 +274,16 @@ namespace clothsim::physics
       if (d >= d_hat)
         return;
       ++contacts[pair.obstacle];
-      const PairBarrier b = pair_barrier(
-        pair.kind, x, pair.moving, pair.kappa, d_hat, pair.threshold, 1, false, false, r);
+      const PairBarrier b = pair_barrier(pair.kind,
+                                         x,
+                                         pair.moving,
+                                         pair.kappa,
+                                         d_hat,
+                                         pair.threshold,
+                                         1,
+                                         PairHessian::exact,
+                                         false,
+                                         r);
       for (unsigned int i = 0; i < b.n; ++i)
         forces[pair.obstacle][i % 3] -= b.gradient[i];
     });

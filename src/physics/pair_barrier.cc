@@ -109,7 +109,7 @@ namespace clothsim::physics
                const double               d_hat,
                const double               threshold,
                const unsigned int         order,
-               const bool                 project,
+               const PairHessian          form,
                const bool                 gauss_newton_mollified,
                const double               offset)
   {
@@ -150,11 +150,13 @@ namespace clothsim::physics
         active[i] = active[i] && moving[i];
         n_active += active[i] ? 1 : 0;
       }
-    // The projected tangent: Gauss-Newton's κ m(x) s''(d) ∇d ∇dᵀ (as for the analytic
-    // obstacles, the part κ m s'(d) ∇²d is dropped, and so are the mollifier's
-    // derivatives, if it acts), from first derivatives alone.
-    const bool gauss_newton =
-      hessian && project && (!mollified || gauss_newton_mollified);
+    // Gauss-Newton's κ m(x) s''(d) ∇d ∇dᵀ (as for the analytic obstacles, the part
+    // κ m s'(d) ∇²d is dropped, and so are the mollifier's derivatives, if it acts), from
+    // first derivatives alone; else the exact Hessian by nested differentiation,
+    // projected unless `form` is exact.
+    const bool project      = form != PairHessian::exact;
+    const bool gauss_newton = hessian && form == PairHessian::gauss_newton &&
+                              (!mollified || gauss_newton_mollified);
     const bool             nested = hessian && !gauss_newton;
     PairBarrier            reduced;
     std::array<double, 12> distance_gradient{};

@@ -7,13 +7,20 @@
 //   m(x) = -x²/ε_x² + 2 x/ε_x  (x < ε_x),  1 otherwise,
 // which takes the barrier smoothly to zero as the edges turn parallel, where the pair's
 // distance type switches (ε_x = 1e-3 |ea|²|eb|² at rest). Derivatives by forward-mode
-// automatic differentiation (Sacado) of the distance's form. The projected (positive
-// semi-definite) Hessian is Gauss-Newton's κ s''(d) ∇d ∇dᵀ, s'' > 0 (the part κ s'(d) ∇²d
-// dropped, as for the analytic obstacles). While the mollifier acts it is the exact
-// Hessian with its negative eigenvalues set to zero, or (`gauss_newton_mollified`, for
-// self-contact, where stacked layers make thousands of such pairs and the projection
-// would dominate the assembly) κ m(x) s''(d) ∇d ∇dᵀ, the mollifier's derivatives dropped
-// too.
+// automatic differentiation (Sacado) of the distance's form. A tangent's Hessian is
+// positive semi-definite either way below (PairHessian):
+// - Gauss-Newton's κ s''(d) ∇d ∇dᵀ, s'' > 0: the part κ s'(d) ∇²d dropped, as for the
+//   analytic obstacles. While the mollifier acts it is the exact Hessian with its
+//   negative eigenvalues set to zero, or (`gauss_newton_mollified`, for self-contact,
+//   where stacked layers make thousands of such pairs and the projection would dominate
+//   the assembly) κ m(x) s''(d) ∇d ∇dᵀ, the mollifier's derivatives dropped too.
+// - the exact Hessian with its negative eigenvalues set to zero. It keeps what
+//   Gauss-Newton drops where that is positive: where the distance's form is a point
+//   against a plane or line (or a line against a line), D = n̂·v, turning the plane or
+//   line by θ about its closest point brings it D (1 - cos θ) closer, so ∇²D holds
+//   -D |δn̂|² and κ s'(d) ∇²D (s' < 0) resists the turn with κ |s'| D. With the distance
+//   less an offset r (an obstacle's core inflated by r) D = d + r is large, and a tangent
+//   without it lets a cloth triangle turn into a sphere at no cost in the model.
 
 #include "physics/pair_distance.h"
 
@@ -29,10 +36,19 @@ namespace clothsim::physics
     std::array<double, 144> hessian{}; // n x n, row-major
   };
 
+  // How the Hessian (order 2) is formed.
+  enum class PairHessian
+  {
+    exact,
+    projected,   // the exact one with its negative eigenvalues set to zero
+    gauss_newton // κ s''(d) ∇d ∇dᵀ (mollified pairs: above)
+  };
+
   // κ (N/m), d̂ (m), `mollifier_threshold` ε_x (m⁴; 0: no mollifier). `moving`: which
   // of the four points are unknowns. `order`: 0 the value, 1 also the gradient, 2 also
-  // the Hessian. Zero beyond d̂, infinite at d = 0. With an `offset` r (m), d is the
-  // pair's distance less r: the pair of an obstacle's core inflated by r.
+  // the Hessian, formed as `form` says. Zero beyond d̂, infinite at d = 0. With an
+  // `offset` r (m), d is the pair's distance less r: the pair of an obstacle's core
+  // inflated by r.
   PairBarrier
   pair_barrier(const PairKind             kind,
                const PairPoints          &x,
@@ -41,7 +57,7 @@ namespace clothsim::physics
                const double               d_hat,
                const double               mollifier_threshold,
                const unsigned int         order,
-               const bool                 project,
+               const PairHessian          form,
                const bool                 gauss_newton_mollified = false,
                const double               offset                 = 0.);
 

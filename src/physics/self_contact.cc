@@ -291,15 +291,17 @@ namespace clothsim::physics
       const PairPoints x = pair_points(pair, u_local);
       if (boxes_apart(pair.kind, x, d_hat))
         return;
-      const PairBarrier b = pair_barrier(pair.kind,
-                                         x,
-                                         moving,
-                                         pair.kappa,
-                                         d_hat,
-                                         pair.threshold,
-                                         order,
-                                         step.projected_tangent,
-                                         /*gauss_newton_mollified=*/true);
+      const PairBarrier b =
+        pair_barrier(pair.kind,
+                     x,
+                     moving,
+                     pair.kappa,
+                     d_hat,
+                     pair.threshold,
+                     order,
+                     step.projected_tangent ? PairHessian::gauss_newton
+                                            : PairHessian::exact,
+                     /*gauss_newton_mollified=*/true);
       if (counted(pair))
         value += b.value;
       if (b.n == 0 || !std::isfinite(b.value))
@@ -396,10 +398,15 @@ namespace clothsim::physics
       const PairPoints x = pair_points(pair, u_local);
       if (!counted(pair) || boxes_apart(pair.kind, x, settings.thickness))
         return;
-      value +=
-        pair_barrier(
-          pair.kind, x, moving, pair.kappa, settings.thickness, pair.threshold, 0, true)
-          .value;
+      value += pair_barrier(pair.kind,
+                            x,
+                            moving,
+                            pair.kappa,
+                            settings.thickness,
+                            pair.threshold,
+                            0,
+                            PairHessian::gauss_newton)
+                 .value;
     });
     return value;
   }

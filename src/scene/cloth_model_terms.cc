@@ -163,13 +163,12 @@ namespace clothsim
       {
         VectorType masses;
         lumped_masses(masses);
-        auto term = std::make_unique<physics::ObstacleContact>(
-          make_obstacles(given, parameter_file),
-          physics::ContactSettings{given.thickness,
-                                   given.barrier_acceleration,
-                                   given.slip_velocity},
-          discretization,
-          masses);
+        physics::ContactSettings settings{given.thickness,
+                                          given.barrier_acceleration,
+                                          given.slip_velocity};
+        settings.core_pairs_projected_exact = given.edge_contact_projected_exact;
+        auto term                           = std::make_unique<physics::ObstacleContact>(
+          make_obstacles(given, parameter_file), settings, discretization, masses);
         contact = term.get();
         model->add(std::move(term));
         const bool friction = std::any_of(given.obstacles.begin(),
