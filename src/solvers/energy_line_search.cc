@@ -37,6 +37,8 @@ namespace clothsim
     // A cap of zero (an iterate on a barrier's limit) leaves no step: the search fails
     // at once (accepting a zero step would change nothing until the iteration cap).
     step = std::min(1., cap(old_group.getX(), direction));
+    if (step < 1e-2)
+      ++n_held_back;
     for (unsigned int cut = 0; cut <= max_halvings && step > 0.; ++cut, step *= 0.5)
       {
         group.computeX(old_group, direction, step);

@@ -33,9 +33,11 @@ namespace clothsim
             const NOX::Abstract::Vector &direction,
             const NOX::Solver::Generic  &solver) override;
 
-    // Line-search cuts in the last solve, and whether any step was judged by the
-    // residual.
-    unsigned int n_cuts = 0;
+    // Line-search cuts in the last solve, and the searches whose cap allowed less than
+    // 1 % of Newton's update (collision detection or a tilt barrier holding the
+    // iterates back).
+    unsigned int n_cuts      = 0;
+    unsigned int n_held_back = 0;
 
   private:
     Objective          objective;
