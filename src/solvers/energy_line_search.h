@@ -33,10 +33,8 @@ namespace clothsim
             const NOX::Abstract::Vector &direction,
             const NOX::Solver::Generic  &solver) override;
 
-    // Line-search cuts in the last solve, and the searches whose cap allowed less than
-    // 1 % of Newton's update (collision detection or a tilt barrier holding the
-    // iterates back).
-    unsigned int n_cuts      = 0;
+    // The searches in the last solve whose cap allowed less than 1 % of Newton's update
+    // (collision detection or a tilt barrier holding the iterates back).
     unsigned int n_held_back = 0;
 
   private:
