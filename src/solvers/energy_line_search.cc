@@ -72,4 +72,17 @@ namespace clothsim
     group.computeF();
     return false;
   }
+
+
+  std::string
+  EnergyLineSearch::iteration_cap_message(const unsigned int iterations) const
+  {
+    std::string message =
+      "no convergence in " + std::to_string(iterations) + " iterations";
+    if (2 * n_held_back > iterations)
+      message += "; the line search's step cap (collision detection or a tilt barrier) "
+                 "held " +
+                 std::to_string(n_held_back) + " of them below 1 % of Newton's update";
+    return message;
+  }
 } // namespace clothsim

@@ -13,6 +13,7 @@
 #include <NOX_LineSearch_UserDefinedFactory.H>
 
 #include <functional>
+#include <string>
 
 namespace clothsim
 {
@@ -33,11 +34,16 @@ namespace clothsim
             const NOX::Abstract::Vector &direction,
             const NOX::Solver::Generic  &solver) override;
 
-    // The searches in the last solve whose cap allowed less than 1 % of Newton's update
-    // (collision detection or a tilt barrier holding the iterates back).
-    unsigned int n_held_back = 0;
+    // Why a solve failed at its cap of `iterations`: "no convergence in ...", and, if
+    // the cap allowed less than 1 % of Newton's update in more than half of them, that
+    // the step cap held the iterates back (collision detection or a tilt barrier: the
+    // tangent's model then lets Newton push into a barrier; README, "Contact with
+    // obstacles").
+    std::string
+    iteration_cap_message(const unsigned int iterations) const;
 
   private:
+    unsigned int       n_held_back = 0;
     Objective          objective;
     StepCap            cap;
     const unsigned int max_halvings;

@@ -590,17 +590,7 @@ namespace clothsim
             result.failure = message.str();
           }
         else if (max_iterations->getStatus() == NOX::StatusTest::Failed)
-          {
-            result.failure = "no convergence in " +
-                             std::to_string(parameters.max_iterations) + " iterations";
-            // Say so when the step cap held most iterates back: the tangent's model
-            // then lets Newton push into a barrier (README, "Contact with obstacles").
-            if (2 * line_search->n_held_back > parameters.max_iterations)
-              result.failure += "; the line search's step cap (collision detection or a "
-                                "tilt barrier) held " +
-                                std::to_string(line_search->n_held_back) +
-                                " of them below 1 % of Newton's update";
-          }
+          result.failure = line_search->iteration_cap_message(parameters.max_iterations);
         else
           result.failure = "line search found no decrease (within its step cap)";
       }
