@@ -21,9 +21,13 @@
 //    a sphere's or a capsule's core: to 1e-12 m; a box's edges and corners: 1e-12 m; a
 //    disc's rim, a polygon around the circle: its tolerance, 1e-5 m), and never more
 //    than that less.
+// 6. How far a core moves in a step (scene/obstacles.h, largest_core_step, which picks
+//    edge contact's tangent): a translating sphere's centre by v dt, a turning box's
+//    corners by the chord 2 ρ sin(ω dt/2), to 1e-12.
 
 #include "contact_checks.h"
 #include "physics/contact_potential.h"
+#include "scene/obstacles.h"
 
 #include <random>
 
@@ -370,6 +374,48 @@ namespace
       }
     return passed;
   }
+
+  bool
+  check_core_steps(ConditionalOStream &pcout)
+  {
+    // The sphere of shapes() translates at 0.1 m/s and turns about its centre: its core
+    // point moves 0.1 dt per step. A box (half extents 0.3, 0.1, 0.2) turning at 1 rad/s
+    // about z through its centre, not translating: its corners, ρ = √0.1 m from the axis,
+    // move by the chord 2 ρ sin(dt/2).
+    const double  dt    = 0.1;
+    ObstacleShape shape = shapes()[1].shape();
+    shape.surface       = physics::core_features(shape, 1e-5);
+    const Obstacle sphere(
+      "sphere",
+      shape,
+      0.,
+      [](const double t) {
+        return Tensor<1, 3>({0.1 * t, -0.2, 0.3});
+      },
+      Tensor<1, 3>({0., 1., 1.}) / std::sqrt(2.),
+      [](const double t) { return 0.7 + t; });
+    shape         = shapes()[4].shape();
+    shape.surface = physics::core_features(shape, 1e-5);
+    const Obstacle box(
+      "box",
+      shape,
+      0.,
+      [](const double) { return Tensor<1, 3>(); },
+      Tensor<1, 3>({0., 0., 1.}),
+      [](const double t) { return t; });
+    bool passed = check_near(pcout,
+                             "sphere: largest core step / (0.1 m/s dt)",
+                             largest_core_step(sphere, dt, 1.) / (0.1 * dt),
+                             1.,
+                             1e-12);
+    passed &= check_near(pcout,
+                         "turning box: largest core step / (2 ρ sin(ω dt / 2))",
+                         largest_core_step(box, dt, 1.) /
+                           (2. * std::sqrt(0.1) * std::sin(0.5 * dt)),
+                         1.,
+                         1e-12);
+    return passed;
+  }
 } // namespace
 
 
@@ -391,5 +437,7 @@ main(int argc, char **argv)
                 scratch_mesh(root / "mesh", {"swing-21.geo", "swing-grid.geo.inc"}));
   pcout << "5. edge contact's geometry" << std::endl;
   passed &= check_edge_contact_geometry(pcout);
+  pcout << "6. how far a core moves in a step" << std::endl;
+  passed &= check_core_steps(pcout);
   return finish(pcout, passed);
 }

@@ -8,6 +8,7 @@
 #include "io/input_error.h"
 #include "io/output_file.h"
 #include "io/provenance.h"
+#include "scene/obstacles.h"
 #include "time/arc_length_stepper.h"
 #include "time/explicit_stepper.h"
 #include "time/time_stepper.h"
@@ -318,6 +319,15 @@ namespace clothsim
     for (const std::string &name : model.term_names())
       pcout << " " << name;
     pcout << "\n";
+    if (const physics::ObstacleContact *contact = model.obstacle_contact())
+      for (unsigned int o = 0; o < contact->get_obstacles().size(); ++o)
+        if (contact->get_settings().core_pairs_projected_exact[o])
+          pcout << "  edge contact of obstacle '" << contact->get_obstacles()[o].name()
+                << "': the projected exact tangent (its core moves by up to "
+                << largest_core_step(contact->get_obstacles()[o],
+                                     parameters.time.time_step,
+                                     parameters.time.end_time)
+                << " m in a time step; 'Contact/Edge contact tangent')\n";
     if (model.uses_springs())
       {
         const auto counts = model.get_springs().global_counts();

@@ -57,19 +57,22 @@ namespace clothsim
       "h, or right through a thin rod. Planes need no edge contact; mesh obstacles "
       "always have it. Measured (README, Contact with obstacles): 1.1 to 1.3 times "
       "the run time of the shipped scenes; obstacles moving by more than their size "
-      "in a step need 'Edge contact tangent = projected exact'.");
+      "in a step take the projected exact tangent (see 'Edge contact tangent').");
     prm.declare_entry(
       "Edge contact tangent",
-      "gauss-newton",
-      Patterns::Selection("gauss-newton|projected exact"),
+      "automatic",
+      Patterns::Selection("automatic|gauss-newton|projected exact"),
       "How edge contact's pairs enter Newton's tangent. 'gauss-newton': κ s''(d) ∇d "
       "∇dᵀ. 'projected exact': the exact Hessian with its negative eigenvalues set to "
       "zero, which keeps the stiffness κ |s'(d)| (d + r) against a cloth triangle or "
       "edge turning about its closest point to a core of radius r (Gauss-Newton drops "
-      "it). Needed where an obstacle moves by more than its size in a step: there "
-      "Newton with 'gauss-newton' turns triangles into the obstacle and stalls on the "
-      "pairs' step cap. Measured (README, Contact with obstacles): 'projected exact' "
-      "costs 1.2 to 1.4 times as much per Newton iteration on the shipped scenes.");
+      "it). 'automatic': 'projected exact' for an obstacle whose core moves by more "
+      "than half its 'Radius' within a 'Time step' somewhere in the run (the run's log "
+      "names it), 'gauss-newton' for the others. Measured (README, Contact with "
+      "obstacles): with 'gauss-newton' a sphere moving by its radius or more per step "
+      "makes Newton turn triangles into it and stall on the pairs' step cap; "
+      "'projected exact' costs 1.2 to 1.4 times as much per Newton iteration on the "
+      "shipped scenes, whose obstacles do not move that fast.");
     prm.declare_entry(
       "Friction updates",
       "1",
@@ -186,15 +189,15 @@ namespace clothsim
   ContactParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact");
-    thickness                    = prm.get_double("Thickness");
-    barrier_acceleration         = prm.get_double("Barrier stiffness");
-    slip_velocity                = prm.get_double("Static friction velocity");
-    friction_updates             = prm.get_integer("Friction updates");
-    edge_contact                 = prm.get_bool("Edge contact");
-    edge_contact_projected_exact = prm.get("Edge contact tangent") == "projected exact";
-    self_contact                 = prm.get_bool("Self contact");
-    self_contact_full_pairs      = prm.get("Self contact tangent") == "full pairs";
-    self_friction                = prm.get_double("Self friction");
+    thickness               = prm.get_double("Thickness");
+    barrier_acceleration    = prm.get_double("Barrier stiffness");
+    slip_velocity           = prm.get_double("Static friction velocity");
+    friction_updates        = prm.get_integer("Friction updates");
+    edge_contact            = prm.get_bool("Edge contact");
+    edge_contact_tangent    = prm.get("Edge contact tangent");
+    self_contact            = prm.get_bool("Self contact");
+    self_contact_full_pairs = prm.get("Self contact tangent") == "full pairs";
+    self_friction           = prm.get_double("Self friction");
     prm.leave_subsection();
 
     obstacles.clear();

@@ -27,9 +27,10 @@ namespace clothsim::physics
     double barrier_acceleration; // a_b, m/s²
     double slip_velocity;        // ε_v, m/s: friction is static below it
     double ccd_fraction = 0.1;   // the line search keeps d >= this share of d(x)
-    // The tangent of the pairs of an analytic obstacle's core (edge contact): the exact
-    // Hessian projected, else Gauss-Newton's (physics/pair_barrier.h).
-    bool core_pairs_projected_exact = false;
+    // Per obstacle, the tangent of the pairs of its core (edge contact): the exact
+    // Hessian projected if true, else Gauss-Newton's (physics/pair_barrier.h; none
+    // given: Gauss-Newton's for all).
+    std::vector<bool> core_pairs_projected_exact = {};
   };
 
   // A cloth vertex in a lagged contact: its dofs, their indices in the values that

@@ -37,6 +37,14 @@ namespace clothsim::physics
   }
 
 
+  bool
+  MeshContact::projected_exact(const unsigned int o) const
+  {
+    return o < settings.core_pairs_projected_exact.size() &&
+           settings.core_pairs_projected_exact[o];
+  }
+
+
   PairPoints
   MeshContact::pair_points(const Pair      &pair,
                            const double    *u_local,
@@ -190,7 +198,7 @@ namespace clothsim::physics
       const PairPoints  x    = pair_points(pair, u_local, poses[pair.obstacle]);
       const double      r    = offset(pair.obstacle);
       const PairHessian form = !projected ? PairHessian::exact
-                               : r > 0. && settings.core_pairs_projected_exact
+                               : projected_exact(pair.obstacle)
                                  ? PairHessian::projected
                                  : PairHessian::gauss_newton;
       const PairBarrier b    = pair_barrier(pair.kind,

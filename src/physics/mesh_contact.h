@@ -140,6 +140,10 @@ namespace clothsim::physics
     double
     offset(const unsigned int o) const;
 
+    // Whether obstacle o's pairs take the projected exact Hessian (ContactSettings).
+    bool
+    projected_exact(const unsigned int o) const;
+
     // `state` with every cloth point carried along with an obstacle from `from` to `to`.
     std::vector<double>
     carried_along(const std::vector<double> &state,

@@ -195,6 +195,13 @@ namespace clothsim
                const VectorType &u_n,
                VectorType       &u_new,
                const double      path_end) override;
+    // The obstacles' contact term, if the scene has obstacles.
+    const physics::ObstacleContact *
+    obstacle_contact() const
+    {
+      return contact;
+    }
+
     bool
     has_contact() const override
     {

@@ -163,13 +163,17 @@ namespace clothsim
       {
         VectorType masses;
         lumped_masses(masses);
-        physics::ContactSettings settings{given.thickness,
+        physics::ContactSettings       settings{given.thickness,
                                           given.barrier_acceleration,
                                           given.slip_velocity};
-        settings.core_pairs_projected_exact = given.edge_contact_projected_exact;
-        auto term                           = std::make_unique<physics::ObstacleContact>(
-          make_obstacles(given, parameter_file), settings, discretization, masses);
-        contact = term.get();
+        std::vector<physics::Obstacle> obstacles = make_obstacles(given, parameter_file);
+        settings.core_pairs_projected_exact      = projected_exact_pairs(
+          given, obstacles, parameters.time.time_step, parameters.time.end_time);
+        auto term = std::make_unique<physics::ObstacleContact>(std::move(obstacles),
+                                                               settings,
+                                                               discretization,
+                                                               masses);
+        contact   = term.get();
         model->add(std::move(term));
         const bool friction = std::any_of(given.obstacles.begin(),
                                           given.obstacles.end(),

@@ -6,6 +6,8 @@
 #include "mesh/surface_mesh.h"
 #include "scene/boundary_conditions.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 
@@ -82,6 +84,51 @@ namespace clothsim
           });
       }
     return obstacles;
+  }
+
+
+  double
+  largest_core_step(const physics::Obstacle &obstacle,
+                    const double             time_step,
+                    const double             end_time)
+  {
+    const auto &surface = obstacle.shape().surface;
+    if (surface == nullptr || obstacle.shape().core == physics::ObstacleCore::mesh ||
+        !(time_step > 0.))
+      return 0.;
+    // A rigid motion moves a body point y by (R' - R) y + (T' - T), affine in y: over the
+    // features' convex hull its length is largest at one of their vertices.
+    const double       steps   = std::ceil(end_time / time_step);
+    const double       stride  = std::max(1., std::ceil(steps / 1e5));
+    double             largest = 0.;
+    physics::RigidPose before  = obstacle.pose(0.);
+    for (double k = 0.; k < steps; k += stride)
+      {
+        const double             t     = k * time_step;
+        const physics::RigidPose after = obstacle.pose(t + time_step);
+        if (stride > 1.)
+          before = obstacle.pose(t);
+        for (const Point<3> &y : surface->vertices)
+          largest = std::max(largest, before.to_world(y).distance(after.to_world(y)));
+        before = after;
+      }
+    return largest;
+  }
+
+
+  std::vector<bool>
+  projected_exact_pairs(const ContactParameters              &parameters,
+                        const std::vector<physics::Obstacle> &obstacles,
+                        const double                          time_step,
+                        const double                          end_time)
+  {
+    std::vector<bool> result(obstacles.size(), false);
+    for (unsigned int o = 0; o < obstacles.size(); ++o)
+      result[o] = parameters.edge_contact_tangent == "projected exact" ||
+                  (parameters.edge_contact_tangent == "automatic" &&
+                   largest_core_step(obstacles[o], time_step, end_time) >
+                     0.5 * obstacles[o].shape().radius);
+    return result;
   }
 
 

@@ -19,6 +19,23 @@ namespace clothsim
   std::vector<physics::Obstacle>
   make_obstacles(const ContactParameters &parameters, const std::string &parameter_file);
 
+  // The farthest any of an analytic obstacle's core features (its ObstacleShape::surface)
+  // moves between its poses at consecutive times k dt, k = 0, 1, ..., up to `end_time`
+  // (m; sampled at most 100,000 times, evenly); 0 without features.
+  double
+  largest_core_step(const physics::Obstacle &obstacle,
+                    const double             time_step,
+                    const double             end_time);
+
+  // Per obstacle, whether its edge contact pairs take the projected exact tangent
+  // ('Contact/Edge contact tangent'; 'automatic': where largest_core_step exceeds half
+  // the obstacle's radius).
+  std::vector<bool>
+  projected_exact_pairs(const ContactParameters              &parameters,
+                        const std::vector<physics::Obstacle> &obstacles,
+                        const double                          time_step,
+                        const double                          end_time);
+
   // Self-contact of the cloth of `discretization` (`masses`: owned lumped masses), after
   // checking that the thickness is below the distance between the cloth's primitives at
   // rest and that `initial` (ghosted, the initial displacement) does not touch itself;
