@@ -56,8 +56,8 @@ namespace clothsim
       "vertices: up to h²/(8 r) into an obstacle of radius r under triangles of edge "
       "h, or right through a thin rod. Planes need no edge contact; mesh obstacles "
       "always have it. Measured (README, Contact with obstacles): 1.1 to 1.3 times "
-      "the run time of the shipped scenes; obstacles moving by more than their size "
-      "in a step take the projected exact tangent (see 'Edge contact tangent').");
+      "the run time of the shipped scenes. How its pairs enter Newton's tangent: "
+      "'Edge contact tangent'.");
     prm.declare_entry(
       "Edge contact tangent",
       "automatic",
