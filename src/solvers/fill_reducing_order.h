@@ -5,6 +5,8 @@
 // ICNTL(7) `ordering` (0 AMD, 3 SCOTCH, 4 PORD, 5 METIS, which Debian's MUMPS replaces
 // by PORD; MumpsFactorization::default_ordering).
 
+#include <mpi.h>
+
 #include <optional>
 #include <vector>
 
@@ -17,4 +19,25 @@ namespace clothsim
                       const std::vector<int> &rows,
                       const std::vector<int> &columns,
                       int                     ordering);
+
+  // order[p] is the row eliminated p-th by METIS' nested dissection (METIS_NodeND,
+  // default options: Karypis & Kumar, SIAM J. Sci. Comput. 20, 1998) of the same
+  // pattern. Nothing if METIS fails.
+  std::optional<std::vector<int>>
+  nested_dissection_order(int                     n,
+                          const std::vector<int> &rows,
+                          const std::vector<int> &columns);
+
+  // The same for a pattern distributed over the ranks (collective): `rows` and
+  // `columns` (1-based) hold this rank's entries of one triangle. Rank 0 gathers them
+  // and orders the rows with an entry off the diagonal alone; rows holding only their
+  // diagonal go last (with them PORD takes 13 times longer: swing N = 321, 14.9 s
+  // against 1.1 s without its 103,041 such rows). On rank 0 each row's 1-based
+  // position (MUMPS' PERM_IN), on the others an empty vector; nothing if it failed.
+  std::optional<std::vector<int>>
+  order_on_rank_zero(int                     n,
+                     const std::vector<int> &rows,
+                     const std::vector<int> &columns,
+                     int                     ordering,
+                     MPI_Comm                communicator);
 } // namespace clothsim

@@ -1,6 +1,7 @@
 #include "solvers/mumps_factorization.h"
 
 #include "solvers/fill_reducing_order.h"
+#include "solvers/subdomain_cholesky.h"
 #include "solvers/supernodal_cholesky.h"
 
 #include <dmumps_c.h>
@@ -245,6 +246,16 @@ namespace clothsim
     // Which entries of the row views go to MUMPS is found once (the sparsity does not
     // change after the analysis).
     const bool first = !analysed;
+    if (first && !set_up_subdomains(matrix))
+      return false;
+    if (subdomains)
+      {
+        analysed = true;
+        if (subdomains->factorize(matrix))
+          return true;
+        last_failure = subdomains->failure();
+        return false;
+      }
     if (first && !set_up_rows(matrix))
       return false;
     if (static_cast<std::size_t>(matrix.NumMyNonzeros()) != upper.size())
@@ -418,6 +429,11 @@ namespace clothsim
   bool
   MumpsFactorization::solve_once(const Epetra_Vector &b, Epetra_Vector &x)
   {
+    if (subdomains)
+      {
+        subdomains->solve(b, x);
+        return true;
+      }
     for (std::size_t i = 0; i < decoupled_rows.size(); ++i)
       x[decoupled_rows[i]] = b[decoupled_rows[i]] / decoupled_diagonal[i];
     if (n_kept == 0)
@@ -485,77 +501,36 @@ namespace clothsim
   bool
   MumpsFactorization::order_on_host()
   {
-    int rank = 0, n_ranks = 1;
-    MPI_Comm_rank(communicator, &rank);
-    MPI_Comm_size(communicator, &n_ranks);
-    // The upper triangle's pattern (1-based new indices) on rank 0.
-    const int        count = static_cast<int>(rows.size());
-    std::vector<int> counts(n_ranks), offsets(n_ranks + 1, 0);
-    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, communicator);
-    for (int r = 0; r < n_ranks; ++r)
-      offsets[r + 1] = offsets[r] + counts[r];
-    std::vector<int> all_rows, all_columns;
-    for (auto [local, all] :
-         {std::pair(&rows, &all_rows), std::pair(&columns, &all_columns)})
-      {
-        all->resize(rank == 0 ? offsets.back() : 0);
-        MPI_Gatherv(local->data(),
-                    count,
-                    MPI_INT,
-                    all->data(),
-                    counts.data(),
-                    offsets.data(),
-                    MPI_INT,
-                    0,
-                    communicator);
-      }
-    int ordered = 1;
-    if (rank == 0)
-      {
-        // Rows with an entry off the diagonal, numbered 0, 1, ... among themselves.
-        std::vector<int> reduced(n_kept, -1);
-        for (std::size_t k = 0; k < all_rows.size(); ++k)
-          if (all_rows[k] != all_columns[k])
-            reduced[all_rows[k] - 1] = reduced[all_columns[k] - 1] = 0;
-        int n_reduced = 0;
-        for (int &index : reduced)
-          if (index == 0)
-            index = n_reduced++;
-        std::vector<int> reduced_rows, reduced_columns;
-        for (std::size_t k = 0; k < all_rows.size(); ++k)
-          if (reduced[all_rows[k] - 1] >= 0)
-            {
-              reduced_rows.push_back(reduced[all_rows[k] - 1]);
-              reduced_columns.push_back(reduced[all_columns[k] - 1]);
-            }
-        const auto order = fill_reducing_order(n_reduced,
-                                               reduced_rows,
-                                               reduced_columns,
-                                               requested_ordering);
-        ordered          = order.has_value() ? 1 : 0;
-        if (order)
-          {
-            // PERM_IN(i): row i's 1-based position in the order; diagonal-only rows last.
-            std::vector<int> position(n_reduced);
-            for (int p = 0; p < n_reduced; ++p)
-              position[(*order)[p]] = p;
-            host_order.resize(n_kept);
-            int last = n_reduced;
-            for (int i = 0; i < n_kept; ++i)
-              host_order[i] = (reduced[i] >= 0 ? position[reduced[i]] : last++) + 1;
-          }
-      }
-    MPI_Bcast(&ordered, 1, MPI_INT, 0, communicator);
-    if (ordered == 0)
+    const auto order =
+      order_on_rank_zero(n_kept, rows, columns, requested_ordering, communicator);
+    if (!order)
       {
         last_failure = "MUMPS' analysis failed to order the matrix on rank 0";
         return false;
       }
+    host_order = *order;
     instance->visit([&](auto &id) {
       id.icntl[at(7)] = 1; // the order given in PERM_IN (read on the host)
       id.perm_in      = host_order.data();
     });
     return true;
+  }
+
+
+  bool
+  MumpsFactorization::set_up_subdomains(const Epetra_CrsMatrix &matrix)
+  {
+    subdomains.reset();
+    int n_ranks = 1;
+    MPI_Comm_size(communicator, &n_ranks);
+    const bool definite = instance->visit([](auto &id) { return id.sym == 1; });
+    if (n_ranks == 1 || !definite)
+      return true;
+    subdomains = std::make_unique<SubdomainCholesky>(communicator, instance->single);
+    if (subdomains->analyse(matrix))
+      return true;
+    last_failure = subdomains->failure();
+    return false;
   }
 
 

@@ -23,6 +23,7 @@
 
 namespace clothsim
 {
+  class SubdomainCholesky;
   class SupernodalCholesky;
 
   class MumpsFactorization
@@ -161,12 +162,17 @@ namespace clothsim
     void
     set_up_cholesky(const Epetra_CrsMatrix &matrix);
 
-    // On several ranks MUMPS gets every row, and its PORD ordering of the whole matrix
-    // takes 13 times longer with the diagonal-only rows in it (swing N = 321: 14.9 s
-    // against 1.1 s without its 103,041 such rows). Rank 0 orders the other rows alone
-    // (solvers/fill_reducing_order.h, PORD) and puts the diagonal-only ones last; MUMPS'
-    // analysis takes that order (ICNTL(7) = 1, PERM_IN: `host_order` on rank 0). False if
-    // the ordering fails.
+    // On several ranks and positive definite (SYM = 1), MUMPS is not called: the
+    // factorisations and solves are SubdomainCholesky's (each rank's interior by its
+    // own SupernodalCholesky, the ranks' interface by a dense Schur complement). False
+    // with last_failure set if its analysis fails.
+    std::unique_ptr<SubdomainCholesky> subdomains;
+    bool
+    set_up_subdomains(const Epetra_CrsMatrix &matrix);
+
+    // On several ranks and indefinite, MUMPS gets every row; rank 0 orders them
+    // (solvers/fill_reducing_order.h, order_on_rank_zero) and MUMPS' analysis takes that
+    // order (ICNTL(7) = 1, PERM_IN: `host_order` on rank 0). False if the ordering fails.
     bool
                      order_on_host();
     int              requested_ordering;

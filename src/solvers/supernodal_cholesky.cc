@@ -85,11 +85,14 @@ namespace clothsim
                               const std::vector<int> &rows,
                               const std::vector<int> &columns,
                               const std::vector<int> &order,
-                              const std::vector<int> &value_index)
+                              const std::vector<int> &value_index,
+                              const int               schur_size)
   {
-    n = n_rows;
+    n       = n_rows;
+    n_schur = schur_size;
     if (static_cast<int>(order.size()) != n || rows.size() != columns.size() ||
-        (!value_index.empty() && value_index.size() != rows.size()))
+        (!value_index.empty() && value_index.size() != rows.size()) || n_schur < 0 ||
+        n_schur > n)
       throw std::invalid_argument("SupernodalCholesky::analyse: sizes differ");
     std::vector<int> position(n, -1);
     for (int p = 0; p < n; ++p)
@@ -101,15 +104,19 @@ namespace clothsim
 
     // The lower pattern in elimination order, by rows; then the same in the order of
     // a postorder of its elimination tree (children before parents, subtrees
-    // contiguous), which is the final permutation.
+    // contiguous), which is the final permutation. The Schur block's rows are joined
+    // in a chain (each to the next in the order), which makes them a path at the top
+    // of the tree: the postorder keeps them last, in their order.
     const auto rows_of = [&](const std::vector<int> &where) {
       std::vector<std::vector<int>> row_entries(n);
+      const auto                    add = [&](const int a, const int b) {
+        if (a != b)
+          row_entries[std::max(a, b)].push_back(std::min(a, b));
+      };
       for (std::size_t k = 0; k < rows.size(); ++k)
-        {
-          const int a = where[rows[k]], b = where[columns[k]];
-          if (a != b)
-            row_entries[std::max(a, b)].push_back(std::min(a, b));
-        }
+        add(where[rows[k]], where[columns[k]]);
+      for (int p = n - n_schur + 1; p < n; ++p)
+        add(where[order[p - 1]], where[order[p]]);
       return row_entries;
     };
     {
@@ -120,6 +127,9 @@ namespace clothsim
       permutation.resize(n);
       for (int i = 0; i < n; ++i)
         permutation[i] = relabel[position[i]];
+      for (int p = n - n_schur; p < n; ++p)
+        if (permutation[order[p]] != p)
+          throw std::logic_error("SupernodalCholesky::analyse: Schur block moved");
     }
     const std::vector<std::vector<int>> row_entries = rows_of(permutation);
     const std::vector<int>              parent      = elimination_tree(row_entries);
@@ -168,7 +178,9 @@ namespace clothsim
                 }
           }
         count[j] = static_cast<std::int64_t>(s.size()) + 1;
-        if (j > 0 && parent[j - 1] == j && n_kids[j] == 1 && count[j - 1] == count[j] + 1)
+        // The Schur block is one supernode (one dense front), of no other column.
+        if (j > n - n_schur || (j > 0 && j != n - n_schur && parent[j - 1] == j &&
+                                n_kids[j] == 1 && count[j - 1] == count[j] + 1))
           chain_of[j] = chain_of[j - 1];
         else
           {
@@ -198,7 +210,7 @@ namespace clothsim
         for (int j = chain_first[c]; j < chain_first[c + 1]; ++j)
           true_entries[c] += count[j];
       }
-    for (int p = 0; p < n_chains; ++p)
+    for (int p = 0; p < n_chains - (n_schur > 0 ? 1 : 0); ++p)
       while (begin[p] > 0)
         {
           const int child = representative(chain_of[begin[p] - 1]);
@@ -315,7 +327,8 @@ namespace clothsim
                            r = below_start[s + 1] - below_start[s], m = k + r;
         largest = std::max(largest, m);
         factor_start.push_back(factor_start.back() + m * k);
-        n_operations += k * k * k / 3. + k * k * r + k * r * r;
+        if (n_schur == 0 || s + 1 < n_nodes)
+          n_operations += k * k * k / 3. + k * k * r + k * r * r;
         const int side = parity[s];
         for (int c = child_start[s]; c < child_start[s + 1]; ++c)
           {
@@ -356,12 +369,32 @@ namespace clothsim
 
 
   void
-  SupernodalCholesky::solve(double *x)
+  SupernodalCholesky::solve(double *x, const std::function<void(double *)> &schur_solve)
   {
+    if (n_schur > 0 && !schur_solve)
+      throw std::invalid_argument("SupernodalCholesky::solve: the Schur block's solve");
     if (single)
-      solve(in_single, x);
+      solve(in_single, x, schur_solve);
     else
-      solve(in_double, x);
+      solve(in_double, x, schur_solve);
+  }
+
+
+  void
+  SupernodalCholesky::add_schur_complement(double *schur) const
+  {
+    const auto add = [&](const auto &numeric) {
+      const auto *front = numeric.factor.data() + factor_start[n_supernodes() - 1];
+      for (std::int64_t j = 0; j < n_schur; ++j)
+        for (std::int64_t i = j; i < n_schur; ++i)
+          schur[i + j * n_schur] += front[i + j * n_schur];
+    };
+    if (n_schur == 0)
+      return;
+    if (single)
+      add(in_single);
+    else
+      add(in_double);
   }
 
 
@@ -423,6 +456,8 @@ namespace clothsim
               }
             from += static_cast<std::int64_t>(rc) * rc;
           }
+        if (n_schur > 0 && s + 1 == n_nodes)
+          break; // the Schur complement, left to the caller
         if (!dense::cholesky(k, P, m))
           return false;
         if (r > 0)
@@ -438,9 +473,12 @@ namespace clothsim
 
   template <typename Number>
   void
-  SupernodalCholesky::solve(Numeric<Number> &numeric, double *x)
+  SupernodalCholesky::solve(Numeric<Number>                     &numeric,
+                            double                              *x,
+                            const std::function<void(double *)> &schur_solve)
   {
-    const int n_nodes = n_supernodes();
+    // The supernodes eliminated here: all but the Schur block's.
+    const int n_nodes = n_supernodes() - (n_schur > 0 ? 1 : 0);
     Number   *rhs = numeric.rhs.data(), *work = numeric.work.data();
     for (int i = 0; i < n; ++i)
       rhs[permutation[i]] = static_cast<Number>(x[i]);
@@ -458,6 +496,12 @@ namespace clothsim
             for (int i = 0; i < r; ++i)
               rhs[below[i]] -= work[i];
           }
+      }
+    if (n_schur > 0)
+      {
+        std::vector<double> block(rhs + n - n_schur, rhs + n);
+        schur_solve(block.data());
+        std::copy(block.begin(), block.end(), rhs + n - n_schur);
       }
     for (int s = n_nodes - 1; s >= 0; --s)
       {

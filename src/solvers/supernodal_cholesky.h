@@ -12,6 +12,7 @@
 // on for the small fronts of a 2D mesh.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace clothsim
@@ -29,12 +30,17 @@ namespace clothsim
     // fill-reducing permutation, e.g. from MUMPS' analysis). Entry k's value will be
     // values[value_index[k]] in factorize() (values[k] if value_index is empty), e.g.
     // its position in a compressed-row matrix's value array that holds both triangles.
+    // The last `n_schur` rows of the order (the Schur block S, the others I) are not
+    // eliminated: they form one dense front at the root, which after factorize() holds
+    // the Schur complement A_SS - A_SI A_II⁻¹ A_IS (George, SIAM J. Numer. Anal. 10,
+    // 1973: the top separator of a nested dissection, here left to the caller).
     void
     analyse(int                     n,
             const std::vector<int> &rows,
             const std::vector<int> &columns,
             const std::vector<int> &order,
-            const std::vector<int> &value_index = {});
+            const std::vector<int> &value_index = {},
+            int                     n_schur     = 0);
 
     // Factorises the matrix whose upper-triangle entries are in `values` (where
     // analyse() placed them). Returns false if a pivot is not positive (the matrix is not
@@ -42,9 +48,18 @@ namespace clothsim
     bool
     factorize(const double *values);
 
-    // x = A⁻¹ b in place, with the last factors.
+    // With a Schur block: adds the last factorisation's Schur complement to `schur`, the
+    // lower triangle of an n_schur x n_schur column-major matrix (row and column i are
+    // order[n - n_schur + i]).
     void
-    solve(double *x);
+    add_schur_complement(double *schur) const;
+
+    // x = A⁻¹ b in place, with the last factors. With a Schur block, after the forward
+    // substitution through I, `schur_solve` gets the Schur block's right-hand side
+    // b_S - A_SI A_II⁻¹ b_I (in the order of add_schur_complement) and must replace it
+    // by x_S; the backward substitution through I follows.
+    void
+    solve(double *x, const std::function<void(double *)> &schur_solve = {});
 
     // Floating-point operations of one factorisation, and entries in the factor.
     double
@@ -64,7 +79,8 @@ namespace clothsim
     }
 
   private:
-    int n = 0;
+    int n       = 0;
+    int n_schur = 0; // the Schur block: the last supernode, not factorised
     // Supernode s holds the permuted columns first_column[s] .. first_column[s + 1] - 1;
     // its front's rows are those columns followed by below_rows[below_start[s] ..
     // below_start[s + 1] - 1] (permuted indices, increasing).
@@ -97,7 +113,7 @@ namespace clothsim
     factorize(Numeric<Number> &numeric, const double *values);
     template <typename Number>
     void
-    solve(Numeric<Number> &numeric, double *x);
+    solve(Numeric<Number> &numeric, double *x, const std::function<void(double *)> &);
 
     bool              single;
     Numeric<float>    in_single;

@@ -1,0 +1,226 @@
+#include "solvers/subdomain_cholesky.h"
+
+#include "solvers/dense_kernels.h"
+#include "solvers/fill_reducing_order.h"
+
+#include <Epetra_Import.h>
+#include <Epetra_IntVector.h>
+
+#include <numeric>
+
+namespace clothsim
+{
+  namespace
+  {
+    // Whether `value` holds on every rank (collective).
+    bool
+    on_all_ranks(const bool value, const MPI_Comm communicator)
+    {
+      int local = value ? 1 : 0, all = 0;
+      MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, communicator);
+      return all == 1;
+    }
+  } // namespace
+
+
+  SubdomainCholesky::SubdomainCholesky(const MPI_Comm communicator,
+                                       const bool     single_precision)
+    : communicator(communicator)
+    , cholesky(single_precision)
+  {}
+
+
+  bool
+  SubdomainCholesky::analyse(const Epetra_CrsMatrix &matrix)
+  {
+    int rank = 0;
+    MPI_Comm_rank(communicator, &rank);
+    int    *offsets = nullptr, *columns = nullptr;
+    double *values = nullptr;
+    if (!on_all_ranks(matrix.StorageOptimized() &&
+                        matrix.ExtractCrsDataPointers(offsets, columns, values) == 0,
+                      communicator))
+      {
+        last_failure = "the matrix's storage is not optimised (FillComplete)";
+        return false;
+      }
+    const Epetra_Map &row_map = matrix.RowMap(), &column_map = matrix.ColMap();
+    const int         n_rows = matrix.NumMyRows();
+
+    // Each column's owner; the separator: rows coupled to a row of a higher rank.
+    Epetra_IntVector owner(row_map), column_owner(column_map);
+    owner.PutValue(rank);
+    const Epetra_Import to_columns(column_map, row_map);
+    column_owner.Import(owner, to_columns, Insert);
+    interior_rows.clear();
+    separator_rows.clear();
+    decoupled_rows.clear();
+    decoupled_offsets.clear();
+    for (int row = 0; row < n_rows; ++row)
+      {
+        const int begin = offsets[row], end = offsets[row + 1];
+        if (end - begin == 1 && column_map.GID(columns[begin]) == row_map.GID(row))
+          {
+            decoupled_rows.push_back(row);
+            decoupled_offsets.push_back(begin);
+            continue;
+          }
+        bool coupled_up = false;
+        for (int k = begin; k < end; ++k)
+          coupled_up = coupled_up || column_owner[columns[k]] > rank;
+        (coupled_up ? separator_rows : interior_rows).push_back(row);
+      }
+    decoupled_diagonal.resize(decoupled_rows.size());
+
+    // The separator numbered across the ranks in their order.
+    const int n_local_separator = static_cast<int>(separator_rows.size());
+    int       first             = 0;
+    MPI_Exscan(&n_local_separator, &first, 1, MPI_INT, MPI_SUM, communicator);
+    if (rank == 0)
+      first = 0; // MPI_Exscan leaves rank 0's result undefined
+    MPI_Allreduce(&n_local_separator, &n_separator, 1, MPI_INT, MPI_SUM, communicator);
+    Epetra_IntVector in_separator(row_map), column_in_separator(column_map);
+    in_separator.PutValue(-1);
+    separator_index.resize(n_local_separator);
+    for (int i = 0; i < n_local_separator; ++i)
+      in_separator[separator_rows[i]] = separator_index[i] = first + i;
+    column_in_separator.Import(in_separator, to_columns, Insert);
+
+    // The local system: the interior rows 0 .. n_interior - 1, then the whole
+    // separator. Its upper triangle, each entry's place in the value array: interior
+    // rows give their interior and separator entries; separator rows only their
+    // entries within the separator (on the rank that owns the row, once).
+    const int        n_interior = static_cast<int>(interior_rows.size());
+    std::vector<int> local_index(n_rows, -1), column_interior(column_map.NumMyElements());
+    for (int i = 0; i < n_interior; ++i)
+      local_index[interior_rows[i]] = i;
+    for (int c = 0; c < column_map.NumMyElements(); ++c)
+      {
+        const int row      = row_map.LID(column_map.GID(c));
+        column_interior[c] = row < 0 ? -1 : local_index[row];
+      }
+    std::vector<int> rows, cols, value_index, interior_pattern[2];
+    bool             symmetric = true;
+    const auto       add       = [&](const int a, const int b, const int k) {
+      rows.push_back(a);
+      cols.push_back(b);
+      value_index.push_back(k);
+      if (b < n_interior)
+        {
+          interior_pattern[0].push_back(a);
+          interior_pattern[1].push_back(b);
+        }
+    };
+    for (int i = 0; i < n_interior; ++i)
+      for (int k = offsets[interior_rows[i]]; k < offsets[interior_rows[i] + 1]; ++k)
+        {
+          const int c = columns[k];
+          if (column_in_separator[c] >= 0)
+            add(i, n_interior + column_in_separator[c], k);
+          else if (column_interior[c] >= i)
+            add(i, column_interior[c], k);
+          else if (column_interior[c] < 0)
+            symmetric = false; // another rank's interior row, or a decoupled row
+        }
+    for (int i = 0; i < n_local_separator; ++i)
+      for (int k = offsets[separator_rows[i]]; k < offsets[separator_rows[i] + 1]; ++k)
+        if (column_in_separator[columns[k]] >= separator_index[i])
+          add(n_interior + separator_index[i],
+              n_interior + column_in_separator[columns[k]],
+              k);
+    if (!on_all_ranks(symmetric, communicator))
+      {
+        last_failure = "the matrix's sparsity is not symmetric";
+        return false;
+      }
+
+    // The interior in a fill-reducing order, the separator last.
+    const auto interior_order =
+      nested_dissection_order(n_interior, interior_pattern[0], interior_pattern[1]);
+    if (!on_all_ranks(interior_order.has_value(), communicator))
+      {
+        last_failure = "METIS' nested dissection of a rank's interior failed";
+        return false;
+      }
+    std::vector<int> order(*interior_order);
+    order.resize(n_interior + n_separator);
+    std::iota(order.begin() + n_interior, order.end(), n_interior);
+    cholesky.analyse(
+      n_interior + n_separator, rows, cols, order, value_index, n_separator);
+    separator_factor.resize(static_cast<std::size_t>(n_separator) * n_separator);
+    packed.resize(static_cast<std::size_t>(n_separator) * (n_separator + 1) / 2);
+    local.resize(n_interior + n_separator);
+    return true;
+  }
+
+
+  bool
+  SubdomainCholesky::factorize(const Epetra_CrsMatrix &matrix)
+  {
+    double *values = nullptr;
+    int    *offsets, *columns;
+    matrix.ExtractCrsDataPointers(offsets, columns, values);
+    bool definite = true;
+    for (std::size_t i = 0; i < decoupled_rows.size(); ++i)
+      {
+        decoupled_diagonal[i] = values[decoupled_offsets[i]];
+        definite              = definite && decoupled_diagonal[i] > 0.;
+      }
+    definite = on_all_ranks(definite && cholesky.factorize(values), communicator);
+    if (definite && n_separator > 0)
+      {
+        // C = Σ_r (A_SS - A_{S I_r} A_{I_r I_r}⁻¹ A_{I_r S}), its lower triangle packed
+        // for the sum, then factorised on every rank.
+        std::fill(separator_factor.begin(), separator_factor.end(), 0.);
+        cholesky.add_schur_complement(separator_factor.data());
+        const std::int64_t n = n_separator;
+        std::size_t        p = 0;
+        for (std::int64_t j = 0; j < n; ++j)
+          for (std::int64_t i = j; i < n; ++i)
+            packed[p++] = separator_factor[i + j * n];
+        MPI_Allreduce(MPI_IN_PLACE,
+                      packed.data(),
+                      static_cast<int>(packed.size()),
+                      MPI_DOUBLE,
+                      MPI_SUM,
+                      communicator);
+        p = 0;
+        for (std::int64_t j = 0; j < n; ++j)
+          for (std::int64_t i = j; i < n; ++i)
+            separator_factor[i + j * n] = packed[p++];
+        // The same sum and the same kernel on every rank: the same factor.
+        definite = dense::cholesky(n_separator, separator_factor.data(), n_separator);
+      }
+    if (!definite)
+      last_failure = "the Cholesky factorisation met a pivot that is not positive (the "
+                     "matrix is not positive definite, or too ill-conditioned for the "
+                     "factors' precision)";
+    return definite;
+  }
+
+
+  void
+  SubdomainCholesky::solve(const Epetra_Vector &b, Epetra_Vector &x)
+  {
+    for (std::size_t i = 0; i < decoupled_rows.size(); ++i)
+      x[decoupled_rows[i]] = b[decoupled_rows[i]] / decoupled_diagonal[i];
+    const int n_interior = static_cast<int>(interior_rows.size());
+    for (int i = 0; i < n_interior; ++i)
+      local[i] = b[interior_rows[i]];
+    // The separator's right-hand side enters on the rank that owns the row.
+    std::fill(local.begin() + n_interior, local.end(), 0.);
+    for (std::size_t i = 0; i < separator_rows.size(); ++i)
+      local[n_interior + separator_index[i]] = b[separator_rows[i]];
+    cholesky.solve(local.data(), [&](double *rhs) {
+      MPI_Allreduce(MPI_IN_PLACE, rhs, n_separator, MPI_DOUBLE, MPI_SUM, communicator);
+      dense::triangular_solve(
+        "N", n_separator, separator_factor.data(), n_separator, rhs);
+      dense::triangular_solve(
+        "T", n_separator, separator_factor.data(), n_separator, rhs);
+    });
+    for (int i = 0; i < n_interior; ++i)
+      x[interior_rows[i]] = local[i];
+    for (std::size_t i = 0; i < separator_rows.size(); ++i)
+      x[separator_rows[i]] = local[n_interior + separator_index[i]];
+  }
+} // namespace clothsim
