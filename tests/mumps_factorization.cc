@@ -12,6 +12,10 @@
 // orders): the same checks hold for it.
 // Rows holding only their diagonal are solved outside MUMPS: the solution and the inertia
 // are the same, and the definite factorisation refuses a negative one.
+// On several ranks the definite factorisation is SubdomainCholesky's (each rank's rows
+// by its own Cholesky, the interface by a dense Schur complement): the same checks, and
+// a 2D five-point matrix whose interface between the ranks is a whole grid line, solved
+// to round-off in double and refined to 1e-12 in single precision.
 
 #include <deal.II/base/mpi.h>
 
@@ -101,6 +105,30 @@ namespace
           matrix.InsertGlobalValues(i, 1, &b, &previous);
         if (next < n)
           matrix.InsertGlobalValues(i, 1, &b, &next);
+      }
+    matrix.FillComplete();
+    return matrix;
+  }
+
+  // (4 + shift) I minus the five-point grid's adjacency on an nx x ny grid, row i + nx j
+  // for vertex (i, j): SPD for shift > 0, its eigenvalues shift + 4 - 2 cos(i π / (nx +
+  // 1)) - 2 cos(j π / (ny + 1)).
+  Epetra_CrsMatrix
+  five_point(const Epetra_Map &map, const int nx, const double shift)
+  {
+    Epetra_CrsMatrix matrix(Copy, map, 5);
+    const int        n = map.NumGlobalElements();
+    for (int local = 0; local < map.NumMyElements(); ++local)
+      {
+        const int    row      = map.GID(local);
+        const double diagonal = 4. + shift, off = -1.;
+        matrix.InsertGlobalValues(row, 1, &diagonal, &row);
+        for (const int column : {row - nx, row + nx})
+          if (column >= 0 && column < n)
+            matrix.InsertGlobalValues(row, 1, &off, &column);
+        for (const int column : {row - 1, row + 1})
+          if (column / nx == row / nx && column >= 0)
+            matrix.InsertGlobalValues(row, 1, &off, &column);
       }
     matrix.FillComplete();
     return matrix;
@@ -318,6 +346,37 @@ main(int argc, char **argv)
     check(diagonal_error < 1e-15 && none.negative_pivots() == n / 6,
           "diagonal matrix: relative error " + sci(diagonal_error) + ", " +
             std::to_string(none.negative_pivots()) + " negative pivots",
+          rank);
+  }
+  {
+    // A 2D grid: on several ranks (rows distributed by grid lines) the interface is a
+    // grid line of 30 rows for each pair of neighbouring ranks.
+    const int              nx = 30, ny = 40;
+    Epetra_Map             grid_map(nx * ny, 0, comm);
+    const Epetra_CrsMatrix matrix = five_point(grid_map, nx, 0.01);
+    MumpsFactorization     mumps(MPI_COMM_WORLD,
+                             MumpsFactorization::Symmetry::positive_definite);
+    check(mumps.factorize(matrix), "five-point grid 30 x 40: factorises", rank);
+    const double error = solution_error(mumps, matrix);
+    check(error < 1e-12, "five-point grid: relative error " + sci(error), rank);
+    MumpsFactorization single(MPI_COMM_WORLD,
+                              MumpsFactorization::Symmetry::positive_definite,
+                              5,
+                              MumpsFactorization::Precision::single_refined);
+    check(single.factorize(matrix) && single.factorize(five_point(grid_map, nx, 1.)),
+          "five-point grid, single precision: factorises twice (new values)",
+          rank);
+    const double refined = solution_error(single, five_point(grid_map, nx, 1.), 1e-12);
+    check(refined < 1e-11,
+          "five-point grid, single precision refined: relative error " + sci(refined),
+          rank);
+    MumpsFactorization negative(MPI_COMM_WORLD,
+                                MumpsFactorization::Symmetry::positive_definite);
+    const bool         factorized = negative.factorize(five_point(grid_map, nx, -0.05));
+    check(!factorized || negative.negative_pivots() > 0,
+          "five-point grid shifted below zero, SYM = 1 tells: " +
+            (factorized ? std::to_string(negative.negative_pivots()) + " negative pivots"
+                        : negative.failure()),
           rank);
   }
   return failures == 0 ? 0 : 1;

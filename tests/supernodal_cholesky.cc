@@ -13,11 +13,18 @@
 // - Structure: a dense matrix is one supernode of n(n + 1)/2 + ... entries and n³/3
 //   operations; a diagonal one n supernodes, solved to a few roundings in single.
 // - An elimination order that is not a permutation is refused.
+// - A Schur block (the last rows of the order left unfactorised): for the middle row of
+//   a tridiagonal Toeplitz matrix (a, b) its Schur complement is a - 2 b² / p_k, p_k the
+//   last pivot of the k x k chain on either side (p_1 = a, p_{j+1} = a - b² / p_j); on
+//   the grid, the complement does not depend on the interior's order, and the solve
+//   through it (its dense Cholesky factor applied by the caller) gives x* to round-off.
 
 #include "solvers/supernodal_cholesky.h"
 
 #include "test_checks.h"
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 using namespace clothsim;
@@ -89,6 +96,35 @@ namespace
         a.values.push_back(diagonal[i]);
       }
     return a;
+  }
+
+  // x = S⁻¹ x for the lower triangle of an n x n SPD S (column-major), by a dense
+  // Cholesky factorisation written out here.
+  void
+  dense_solve(const int n, std::vector<double> s, double *x)
+  {
+    const auto at = [&](int i, int j) -> double & { return s[i + j * n]; };
+    for (int j = 0; j < n; ++j)
+      {
+        for (int k = 0; k < j; ++k)
+          for (int i = j; i < n; ++i)
+            at(i, j) -= at(i, k) * at(j, k);
+        const double pivot = std::sqrt(at(j, j));
+        for (int i = j; i < n; ++i)
+          at(i, j) /= pivot;
+      }
+    for (int j = 0; j < n; ++j)
+      {
+        x[j] /= at(j, j);
+        for (int i = j + 1; i < n; ++i)
+          x[i] -= at(i, j) * x[j];
+      }
+    for (int j = n - 1; j >= 0; --j)
+      {
+        for (int i = j + 1; i < n; ++i)
+          x[j] -= at(i, j) * x[i];
+        x[j] /= at(j, j);
+      }
   }
 
   double
@@ -259,6 +295,82 @@ main(int argc, char **argv)
     const std::vector<double> x_diagonal =
       solve(separate, diagonal, diagonal.multiply(ones));
     check_below(out, "diagonal: relative error", relative_error(x_diagonal, ones), 3e-7);
+  }
+
+  {
+    // The middle row of a tridiagonal Toeplitz matrix as the Schur block.
+    const int    k = 10, n = 2 * k + 1;
+    const double diagonal = 4., off = -1.;
+    Upper        t;
+    t.n = n;
+    for (int i = 0; i < n; ++i)
+      for (int j = i; j <= std::min(i + 1, n - 1); ++j)
+        {
+          t.rows.push_back(i);
+          t.columns.push_back(j);
+          t.values.push_back(i == j ? diagonal : off);
+        }
+    std::vector<int> order;
+    for (int i = 0; i < n; ++i)
+      if (i != k)
+        order.push_back(i);
+    order.push_back(k);
+    SupernodalCholesky cholesky(/*single_precision=*/false);
+    cholesky.analyse(n, t.rows, t.columns, order, {}, 1);
+    double pivot = diagonal;
+    for (int j = 1; j < k; ++j)
+      pivot = diagonal - off * off / pivot;
+    double schur = 0.;
+    check(out,
+          cholesky.factorize(t.values.data()),
+          "tridiagonal, Schur block: factorises");
+    cholesky.add_schur_complement(&schur);
+    check_below(out,
+                "tridiagonal: Schur complement of the middle row against a - 2 b² / p_k",
+                std::abs(schur - (diagonal - 2. * off * off / pivot)) / schur,
+                1e-15);
+
+    // The grid with the last 60 rows of the random order as the Schur block.
+    const int           m = 60;
+    std::vector<double> schurs[2];
+    const auto          interior = [&](const bool reverse) {
+      std::vector<int> order = shuffled;
+      if (reverse)
+        std::reverse(order.begin(), order.end() - m);
+      return order;
+    };
+    for (const bool reverse : {false, true})
+      {
+        SupernodalCholesky in_double(/*single_precision=*/false);
+        in_double.analyse(a.n, a.rows, a.columns, interior(reverse), {}, m);
+        check(out,
+              in_double.factorize(a.values.data()),
+              std::string("grid, Schur block of 60 rows, ") +
+                (reverse ? "interior reversed" : "random order") + ": factorises");
+        schurs[reverse].assign(m * m, 0.);
+        in_double.add_schur_complement(schurs[reverse].data());
+        std::vector<double> x = b;
+        in_double.solve(x.data(),
+                        [&](double *rhs) { dense_solve(m, schurs[reverse], rhs); });
+        check_below(out,
+                    std::string("grid, Schur block, ") +
+                      (reverse ? "interior reversed" : "random order") +
+                      ": relative error of the solve through it",
+                    relative_error(x, exact),
+                    1e-13);
+      }
+    double difference = 0., norm = 0.;
+    for (int j = 0; j < m; ++j)
+      for (int i = j; i < m; ++i)
+        {
+          difference =
+            std::max(difference, std::abs(schurs[0][i + j * m] - schurs[1][i + j * m]));
+          norm = std::max(norm, std::abs(schurs[0][i + j * m]));
+        }
+    check_below(out,
+                "grid: the Schur complement does not depend on the interior's order",
+                difference / norm,
+                1e-13);
   }
 
   {
