@@ -27,6 +27,7 @@ namespace clothsim
                                        const bool     single_precision)
     : communicator(communicator)
     , cholesky(single_precision)
+    , single(single_precision)
   {}
 
 
@@ -147,8 +148,15 @@ namespace clothsim
     std::iota(order.begin() + n_interior, order.end(), n_interior);
     cholesky.analyse(
       n_interior + n_separator, rows, cols, order, value_index, n_separator);
-    separator_factor.resize(static_cast<std::size_t>(n_separator) * n_separator);
-    packed.resize(static_cast<std::size_t>(n_separator) * (n_separator + 1) / 2);
+    const std::size_t n_entries = static_cast<std::size_t>(n_separator) * n_separator,
+                      n_packed =
+                        static_cast<std::size_t>(n_separator) * (n_separator + 1) / 2;
+    separator.factor.assign(single ? 0 : n_entries, 0.);
+    separator.packed.assign(single ? 0 : n_packed, 0.);
+    separator_single.factor.assign(single ? n_entries : 0, 0.f);
+    separator_single.packed.assign(single ? n_packed : 0, 0.f);
+    separator_single.rhs.assign(single ? n_separator : 0, 0.f);
+    schur.resize(n_entries);
     local.resize(n_interior + n_separator);
     return true;
   }
@@ -169,27 +177,10 @@ namespace clothsim
     definite = on_all_ranks(definite && cholesky.factorize(values), communicator);
     if (definite && n_separator > 0)
       {
-        // C = Σ_r (A_SS - A_{S I_r} A_{I_r I_r}⁻¹ A_{I_r S}), its lower triangle packed
-        // for the sum, then factorised on every rank.
-        std::fill(separator_factor.begin(), separator_factor.end(), 0.);
-        cholesky.add_schur_complement(separator_factor.data());
-        const std::int64_t n = n_separator;
-        std::size_t        p = 0;
-        for (std::int64_t j = 0; j < n; ++j)
-          for (std::int64_t i = j; i < n; ++i)
-            packed[p++] = separator_factor[i + j * n];
-        MPI_Allreduce(MPI_IN_PLACE,
-                      packed.data(),
-                      static_cast<int>(packed.size()),
-                      MPI_DOUBLE,
-                      MPI_SUM,
-                      communicator);
-        p = 0;
-        for (std::int64_t j = 0; j < n; ++j)
-          for (std::int64_t i = j; i < n; ++i)
-            separator_factor[i + j * n] = packed[p++];
-        // The same sum and the same kernel on every rank: the same factor.
-        definite = dense::cholesky(n_separator, separator_factor.data(), n_separator);
+        std::fill(schur.begin(), schur.end(), 0.);
+        cholesky.add_schur_complement(schur.data());
+        definite = single ? factorize_separator(separator_single, MPI_FLOAT)
+                          : factorize_separator(separator, MPI_DOUBLE);
       }
     if (!definite)
       last_failure = "the Cholesky factorisation met a pivot that is not positive (the "
@@ -213,14 +204,46 @@ namespace clothsim
       local[n_interior + separator_index[i]] = b[separator_rows[i]];
     cholesky.solve(local.data(), [&](double *rhs) {
       MPI_Allreduce(MPI_IN_PLACE, rhs, n_separator, MPI_DOUBLE, MPI_SUM, communicator);
-      dense::triangular_solve(
-        "N", n_separator, separator_factor.data(), n_separator, rhs);
-      dense::triangular_solve(
-        "T", n_separator, separator_factor.data(), n_separator, rhs);
+      const auto solve_with = [&](auto &factor, auto *x) {
+        dense::triangular_solve("N", n_separator, factor.data(), n_separator, x);
+        dense::triangular_solve("T", n_separator, factor.data(), n_separator, x);
+      };
+      if (!single)
+        return solve_with(separator.factor, rhs);
+      std::vector<float> &x = separator_single.rhs;
+      std::copy(rhs, rhs + n_separator, x.begin());
+      solve_with(separator_single.factor, x.data());
+      std::copy(x.begin(), x.end(), rhs);
     });
     for (int i = 0; i < n_interior; ++i)
       x[interior_rows[i]] = local[i];
     for (std::size_t i = 0; i < separator_rows.size(); ++i)
       x[separator_rows[i]] = local[n_interior + separator_index[i]];
+  }
+
+
+  template <typename Number>
+  bool
+  SubdomainCholesky::factorize_separator(Separator<Number> &in, const MPI_Datatype type)
+  {
+    // C = Σ_r (A_SS - A_{S I_r} A_{I_r I_r}⁻¹ A_{I_r S}): this rank's term (in `schur`),
+    // its lower triangle packed for the sum, then factorised on every rank.
+    const std::int64_t n = n_separator;
+    std::size_t        p = 0;
+    for (std::int64_t j = 0; j < n; ++j)
+      for (std::int64_t i = j; i < n; ++i)
+        in.packed[p++] = static_cast<Number>(schur[i + j * n]);
+    MPI_Allreduce(MPI_IN_PLACE,
+                  in.packed.data(),
+                  static_cast<int>(in.packed.size()),
+                  type,
+                  MPI_SUM,
+                  communicator);
+    p = 0;
+    for (std::int64_t j = 0; j < n; ++j)
+      for (std::int64_t i = j; i < n; ++i)
+        in.factor[i + j * n] = in.packed[p++];
+    // The same sum and the same kernel on every rank: the same factor.
+    return dense::cholesky(n_separator, in.factor.data(), n_separator);
   }
 } // namespace clothsim

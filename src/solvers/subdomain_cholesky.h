@@ -29,7 +29,7 @@ namespace clothsim
   class SubdomainCholesky
   {
   public:
-    // The interior's factors in single or double precision (C is factorised in double).
+    // The factors (the interiors' and C's) in single or double precision.
     SubdomainCholesky(MPI_Comm communicator, bool single_precision);
 
     // Finds the separator and analyses the sparsity of `matrix` (collective; its storage
@@ -76,8 +76,20 @@ namespace clothsim
     std::vector<int>    decoupled_rows, decoupled_offsets; // offsets in the value array
     std::vector<double> decoupled_diagonal;
     int                 n_separator = 0;
-    // C's Cholesky factor (lower, column-major) and the work vectors of the solves.
-    std::vector<double> separator_factor, packed, local;
-    std::string         last_failure;
+    // This rank's term of C (n_separator², column-major), and C's Cholesky factor
+    // (lower), its packed sum and a solve's right-hand side, in the factors' precision.
+    bool                single;
+    std::vector<double> schur, local;
+    template <typename Number>
+    struct Separator
+    {
+      std::vector<Number> factor, packed, rhs;
+    };
+    Separator<double> separator;
+    Separator<float>  separator_single;
+    template <typename Number>
+    bool
+                factorize_separator(Separator<Number> &in, MPI_Datatype type);
+    std::string last_failure;
   };
 } // namespace clothsim
