@@ -23,7 +23,9 @@
 //    than that less.
 // 6. How far a core moves in a step (scene/obstacles.h, largest_core_step, which picks
 //    edge contact's tangent): a translating sphere's centre by v dt, a turning box's
-//    corners by the chord 2 ρ sin(ω dt/2), to 1e-12.
+//    corners by the chord 2 ρ sin(ω dt/2), to 1e-12. 'automatic' takes the projected
+//    exact tangent for the sphere moving by a quarter of its radius per 'Time step' only
+//    when adaptive steps may grow to 'Maximum time step' (4 times as long).
 
 #include "contact_checks.h"
 #include "physics/contact_potential.h"
@@ -414,6 +416,29 @@ namespace
                            (2. * std::sqrt(0.1) * std::sin(0.5 * dt)),
                          1.,
                          1e-12);
+
+    TimeParameters time{};
+    time.end_time          = 1.;
+    time.time_step         = 0.25 * sphere.shape().radius / 0.1;
+    time.maximum_time_step = 4. * time.time_step;
+    ContactParameters contact{};
+    contact.edge_contact_tangent = "automatic";
+    for (const bool adaptive : {false, true})
+      {
+        time.adaptive_time_steps = adaptive;
+        const std::string what   = adaptive ? "adaptive steps" : "fixed steps";
+        passed &= check_near(pcout,
+                             what + ": longest time step / the expected one",
+                             longest_time_step(time) /
+                               (adaptive ? time.maximum_time_step : time.time_step),
+                             1.,
+                             1e-15);
+        const bool projected = projected_exact_pairs(contact, {sphere}, time)[0];
+        passed &= check(pcout,
+                        projected == adaptive,
+                        what + ": 'automatic' takes the projected exact tangent: " +
+                          (projected ? "yes" : "no"));
+      }
     return passed;
   }
 } // namespace

@@ -325,9 +325,10 @@ namespace clothsim
           pcout << "  edge contact of obstacle '" << contact->get_obstacles()[o].name()
                 << "': the projected exact tangent (its core moves by up to "
                 << largest_core_step(contact->get_obstacles()[o],
-                                     parameters.time.time_step,
+                                     longest_time_step(parameters.time),
                                      parameters.time.end_time)
-                << " m in a time step; 'Contact/Edge contact tangent')\n";
+                << " m in a time step of " << longest_time_step(parameters.time)
+                << " s; 'Contact/Edge contact tangent')\n";
     if (model.uses_springs())
       {
         const auto counts = model.get_springs().global_counts();

@@ -167,8 +167,8 @@ namespace clothsim
                                           given.barrier_acceleration,
                                           given.slip_velocity};
         std::vector<physics::Obstacle> obstacles = make_obstacles(given, parameter_file);
-        settings.core_pairs_projected_exact      = projected_exact_pairs(
-          given, obstacles, parameters.time.time_step, parameters.time.end_time);
+        settings.core_pairs_projected_exact =
+          projected_exact_pairs(given, obstacles, parameters.time);
         auto term = std::make_unique<physics::ObstacleContact>(std::move(obstacles),
                                                                settings,
                                                                discretization,

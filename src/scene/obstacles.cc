@@ -116,18 +116,26 @@ namespace clothsim
   }
 
 
+  double
+  longest_time_step(const TimeParameters &time)
+  {
+    return time.adaptive_time_steps ? std::max(time.time_step, time.maximum_time_step)
+                                    : time.time_step;
+  }
+
+
   std::vector<bool>
   projected_exact_pairs(const ContactParameters              &parameters,
                         const std::vector<physics::Obstacle> &obstacles,
-                        const double                          time_step,
-                        const double                          end_time)
+                        const TimeParameters                 &time)
   {
     std::vector<bool> result(obstacles.size(), false);
     for (unsigned int o = 0; o < obstacles.size(); ++o)
-      result[o] = parameters.edge_contact_tangent == "projected exact" ||
-                  (parameters.edge_contact_tangent == "automatic" &&
-                   largest_core_step(obstacles[o], time_step, end_time) >
-                     0.5 * obstacles[o].shape().radius);
+      result[o] =
+        parameters.edge_contact_tangent == "projected exact" ||
+        (parameters.edge_contact_tangent == "automatic" &&
+         largest_core_step(obstacles[o], longest_time_step(time), time.end_time) >
+           0.5 * obstacles[o].shape().radius);
     return result;
   }
 

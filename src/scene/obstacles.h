@@ -27,14 +27,18 @@ namespace clothsim
                     const double             time_step,
                     const double             end_time);
 
+  // The longest time step a run may take (s): 'Time step', and with adaptive steps
+  // 'Maximum time step' if that is longer.
+  double
+  longest_time_step(const TimeParameters &time);
+
   // Per obstacle, whether its edge contact pairs take the projected exact tangent
-  // ('Contact/Edge contact tangent'; 'automatic': where largest_core_step exceeds half
-  // the obstacle's radius).
+  // ('Contact/Edge contact tangent'; 'automatic': where largest_core_step at the run's
+  // longest_time_step exceeds half the obstacle's radius).
   std::vector<bool>
   projected_exact_pairs(const ContactParameters              &parameters,
                         const std::vector<physics::Obstacle> &obstacles,
-                        const double                          time_step,
-                        const double                          end_time);
+                        const TimeParameters                 &time);
 
   // Self-contact of the cloth of `discretization` (`masses`: owned lumped masses), after
   // checking that the thickness is below the distance between the cloth's primitives at
