@@ -20,6 +20,22 @@ namespace clothsim
       MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, communicator);
       return all == 1;
     }
+
+    // data = the sum of every rank's data, the same on every rank: summed on rank 0 and
+    // broadcast (MPI_Allreduce may add in another order on each rank, and ranks whose
+    // separator factors differ in their last bits would disagree on x_S).
+    void
+    sum_on_all_ranks(void              *data,
+                     const int          count,
+                     const MPI_Datatype type,
+                     const MPI_Comm     communicator)
+    {
+      int rank = 0;
+      MPI_Comm_rank(communicator, &rank);
+      MPI_Reduce(
+        rank == 0 ? MPI_IN_PLACE : data, data, count, type, MPI_SUM, 0, communicator);
+      MPI_Bcast(data, count, type, 0, communicator);
+    }
   } // namespace
 
 
@@ -203,7 +219,7 @@ namespace clothsim
     for (std::size_t i = 0; i < separator_rows.size(); ++i)
       local[n_interior + separator_index[i]] = b[separator_rows[i]];
     cholesky.solve(local.data(), [&](double *rhs) {
-      MPI_Allreduce(MPI_IN_PLACE, rhs, n_separator, MPI_DOUBLE, MPI_SUM, communicator);
+      sum_on_all_ranks(rhs, n_separator, MPI_DOUBLE, communicator);
       const auto solve_with = [&](auto &factor, auto *x) {
         dense::triangular_solve("N", n_separator, factor.data(), n_separator, x);
         dense::triangular_solve("T", n_separator, factor.data(), n_separator, x);
@@ -233,12 +249,10 @@ namespace clothsim
     for (std::int64_t j = 0; j < n; ++j)
       for (std::int64_t i = j; i < n; ++i)
         in.packed[p++] = static_cast<Number>(schur[i + j * n]);
-    MPI_Allreduce(MPI_IN_PLACE,
-                  in.packed.data(),
-                  static_cast<int>(in.packed.size()),
-                  type,
-                  MPI_SUM,
-                  communicator);
+    sum_on_all_ranks(in.packed.data(),
+                     static_cast<int>(in.packed.size()),
+                     type,
+                     communicator);
     p = 0;
     for (std::int64_t j = 0; j < n; ++j)
       for (std::int64_t i = j; i < n; ++i)

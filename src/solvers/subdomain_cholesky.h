@@ -9,7 +9,7 @@
 // and to S. Each rank factorises A_{I_r I_r} with its own SupernodalCholesky (METIS
 // orders it) and forms its share of the Schur complement
 //   C = A_SS - Σ_r A_{S I_r} A_{I_r I_r}⁻¹ A_{I_r S},
-// which one MPI_Allreduce sums on every rank; each factorises C densely (LAPACK). A solve
+// which one reduction sums on every rank; each factorises C densely (LAPACK). A solve
 // substitutes forward through each rank's interior, sums the separator's right-hand
 // sides, solves with C's factor and substitutes backward: two reductions of |S| numbers
 // in all. All but C's factorisation runs in parallel; C's order is about the length of
