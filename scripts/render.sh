@@ -18,10 +18,13 @@ number_file="$(mktemp)"
 Xvfb -displayfd 3 -screen 0 1280x1024x24 -nolisten tcp -noreset 3>"$number_file" 2>/dev/null &
 server=$!
 trap 'kill "$server" 2>/dev/null || true; wait "$server" 2>/dev/null || true; rm -f "$number_file"' EXIT
+# The number is complete once its line ends (a check between two writes would read part
+# of it).
 for _ in $(seq 1 300); do
-  [ -s "$number_file" ] && break
+  [ "$(wc -l < "$number_file")" -ge 1 ] && break
   kill -0 "$server" 2>/dev/null || { echo "render.sh: Xvfb did not start" >&2; exit 1; }
   sleep 0.1
 done
-[ -s "$number_file" ] || { echo "render.sh: Xvfb gave no display within 30 s" >&2; exit 1; }
+[ "$(wc -l < "$number_file")" -ge 1 ] ||
+  { echo "render.sh: Xvfb gave no display within 30 s" >&2; exit 1; }
 DISPLAY=":$(head -n 1 "$number_file")" pvbatch "$script" "$@"
