@@ -1,5 +1,7 @@
 #include "solvers/subdomain_cholesky.h"
 
+#include <deal.II/base/mpi.h>
+
 #include "solvers/dense_kernels.h"
 #include "solvers/fill_reducing_order.h"
 
@@ -16,9 +18,7 @@ namespace clothsim
     bool
     on_all_ranks(const bool value, const MPI_Comm communicator)
     {
-      int local = value ? 1 : 0, all = 0;
-      MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, communicator);
-      return all == 1;
+      return dealii::Utilities::MPI::min(value ? 1 : 0, communicator) == 1;
     }
 
     // data = the sum of every rank's data, the same on every rank: summed on rank 0 and
