@@ -103,6 +103,11 @@ namespace clothsim::mesh
     dof_handler.distribute_dofs(*fe);
     locally_owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
+    owned_prototype.reinit(locally_owned_dofs, communicator);
+    ghosted_prototype.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
+    ghost_import =
+      std::make_unique<const Epetra_Import>(ghosted_prototype.trilinos_vector().Map(),
+                                            owned_prototype.trilinos_vector().Map());
     vertex_count = DoFTools::count_dofs_per_fe_component(dof_handler)[0];
 
     // local dof -> (vertex, component) for the displacements (the P1 base element's dof
@@ -250,14 +255,30 @@ namespace clothsim::mesh
   void
   Discretization::initialize_owned(VectorType &vector) const
   {
-    vector.reinit(locally_owned_dofs, communicator);
+    vector = VectorType(owned_prototype); // a copy shares the prototype's map
   }
 
 
   void
   Discretization::initialize_ghosted(VectorType &vector) const
   {
-    vector.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
+    vector = VectorType(ghosted_prototype);
+  }
+
+
+  void
+  Discretization::import_ghosts(const VectorType &owned, VectorType &ghosted) const
+  {
+    const Epetra_MultiVector &from = owned.trilinos_vector();
+    Epetra_MultiVector       &to   = ghosted.trilinos_vector();
+    if (from.Map().DataPtr() != owned_prototype.trilinos_vector().Map().DataPtr() ||
+        to.Map().DataPtr() != ghosted_prototype.trilinos_vector().Map().DataPtr())
+      {
+        ghosted = owned;
+        return;
+      }
+    const int ierr = to.Import(from, *ghost_import, Insert);
+    AssertThrow(ierr == 0, ExcTrilinosError(ierr));
   }
 
 

@@ -23,6 +23,8 @@
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <Epetra_Import.h>
+
 
 #include <array>
 #include <functional>
@@ -187,10 +189,20 @@ namespace clothsim
         return unused;
       }
 
+      // Zeroed vectors of the owned and of the ghosted (locally relevant) layout. All
+      // vectors made here share one Epetra map per layout, so that import_ghosts() and
+      // deal.II's checks of equal layouts compare pointers, not index lists.
       void
       initialize_owned(VectorType &vector) const;
       void
       initialize_ghosted(VectorType &vector) const;
+      // ghosted = owned (its owned entries and the ghosts from their owners) through one
+      // Epetra_Import built at set-up. deal.II's assignment builds a new Import at every
+      // call, with a global-to-local lookup per entry and a round of messages (4 % of a
+      // second rank's time on the swing, N = 161). Vectors not made by the two
+      // functions above are assigned by deal.II.
+      void
+      import_ghosts(const VectorType &owned, VectorType &ghosted) const;
       // The cells' couplings through `constraints`, plus any that `add_couplings` adds
       // (terms that couple dofs sharing no cell, e.g. cross springs).
       void
@@ -265,6 +277,9 @@ namespace clothsim
       DoFHandler<2, 3>                                   dof_handler;
       IndexSet                                           locally_owned_dofs;
       IndexSet                                           locally_relevant_dofs;
+      VectorType                                         owned_prototype;   // zero
+      VectorType                                         ghosted_prototype; // zero
+      std::unique_ptr<const Epetra_Import>               ghost_import;
       IndexSet                                           displacement_dofs;
       unsigned int                                       vertex_count = 0;
       std::vector<std::pair<unsigned int, unsigned int>> dof_vertex_component;

@@ -17,10 +17,10 @@ namespace clothsim::physics
                                    const AffineConstraints<double> &constraints)
   {
     const unsigned int n = discretization.relevant_dofs().n_elements();
-    step_start           = u_n;
+    discretization.import_ghosts(u_n, step_start);
     VectorType guess;
     discretization.initialize_ghosted(guess);
-    guess                            = u_new;
+    discretization.import_ghosts(u_new, guess);
     const double             *start  = ghosted_values(step_start, n);
     const double             *target = ghosted_values(guess, n);
     const std::vector<double> at_start(start, start + n);
@@ -74,7 +74,7 @@ namespace clothsim::physics
     discretization.initialize_ghosted(start);
     discretization.initialize_ghosted(guess);
     discretization.initialize_owned(marks);
-    start                                  = u_n;
+    discretization.import_ghosts(u_n, start);
     const double             *start_values = ghosted_values(start, n);
     const std::vector<double> at_start(start_values, start_values + n);
     const MPI_Comm            communicator = discretization.get_communicator();

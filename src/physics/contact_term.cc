@@ -282,8 +282,8 @@ namespace clothsim::physics
       {
         VectorType ghosted;
         discretization.initialize_ghosted(ghosted);
-        ghosted = u;
-        found   = mesh_pairs.touching(
+        discretization.import_ghosts(u, ghosted);
+        found = mesh_pairs.touching(
           ghosted_values(ghosted, discretization.relevant_dofs().n_elements()), poses);
         if (!found.empty())
           found += " at t = " + std::to_string(time) + " s";

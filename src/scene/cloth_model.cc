@@ -107,8 +107,8 @@ namespace clothsim
     VectorType from, to;
     initialize_ghosted(from);
     initialize_ghosted(to);
-    from = u_n;
-    to   = u_new;
+    import_ghosts(u_n, from);
+    import_ghosts(u_new, to);
     return self_contact->update_couplings(from, to);
   }
 
@@ -202,7 +202,7 @@ namespace clothsim
             for (const types::global_dof_index i : owned_dofs())
               owned[i] = sign * epsilon * u(i);
             owned.compress(VectorOperation::insert);
-            scaled = owned;
+            import_ghosts(owned, scaled);
             model->static_forces(scaled,
                                  step,
                                  sign > 0.   ? plus
@@ -299,11 +299,11 @@ namespace clothsim
         VectorType from, direction;
         initialize_ghosted(from);
         initialize_ghosted(direction);
-        from = u_n;
+        import_ghosts(u_n, from);
         VectorType owned_direction(u_new);
         owned_direction -= u_n;
         owned_direction *= path_end;
-        direction          = owned_direction;
+        import_ghosts(owned_direction, direction);
         const double alpha = model->largest_step(from, direction);
         if (alpha < 1.)
           {
@@ -319,7 +319,7 @@ namespace clothsim
       {
         VectorType start;
         initialize_ghosted(start);
-        start = u_n;
+        import_ghosts(u_n, start);
         self_contact->lag_friction(start, t_new - t_n);
       }
     if (contact == nullptr)

@@ -158,6 +158,11 @@ namespace clothsim
       discretization.initialize_ghosted(vector);
     }
     void
+    import_ghosts(const VectorType &owned, VectorType &ghosted) const override
+    {
+      discretization.import_ghosts(owned, ghosted);
+    }
+    void
     initialize_matrix(MatrixType &matrix) const override
     {
       model->initialize_matrix(matrix);

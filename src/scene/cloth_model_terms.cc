@@ -196,7 +196,7 @@ namespace clothsim
     initialize_owned(v);
     initial_state(u, v);
     initialize_ghosted(initial);
-    initial   = u;
+    import_ghosts(u, initial);
     auto term = make_self_contact(given, parameter_file, discretization, masses, initial);
     self_contact = term.get();
     model->add(std::move(term));

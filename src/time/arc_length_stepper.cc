@@ -50,7 +50,7 @@ namespace clothsim
   ArcLengthStepper::evaluate_forces(const VectorType &u, const double lambda)
   {
     TimerOutput::Scope scope(timer, "assemble residual");
-    ghosted         = u;
+    model.import_ghosts(u, ghosted);
     StepTerms terms = static_terms(lambda);
     model.assemble(ghosted, terms, &residual, nullptr);
     // f = R(u, λ) - R(u, λ + 1): the loads are linear in λ.
@@ -65,7 +65,7 @@ namespace clothsim
   {
     {
       TimerOutput::Scope scope(timer, "assemble tangent");
-      ghosted = u;
+      model.import_ghosts(u, ghosted);
       model.assemble(ghosted, static_terms(lambda), nullptr, &tangent);
     }
     TimerOutput::Scope scope(timer, "preconditioner setup");
@@ -223,8 +223,8 @@ namespace clothsim
             VectorType         direction;
             model.initialize_ghosted(direction);
             direction = update;
-            ghosted   = u;
-            alpha     = model.largest_step(ghosted, direction, lambda);
+            model.import_ghosts(u, ghosted);
+            alpha = model.largest_step(ghosted, direction, lambda);
           }
         u.add(alpha, update);
         lambda += alpha * delta_lambda;
@@ -308,7 +308,7 @@ namespace clothsim
         summary.tangents += result.iterations;
         if (result.converged)
           {
-            ghosted                   = u_new;
+            model.import_ghosts(u_new, ghosted);
             const std::string failure = blow_up(ghosted);
             if (!failure.empty())
               {
@@ -344,9 +344,9 @@ namespace clothsim
         u_n                 = u_new;
         lambda_n            = lambda_new;
         ++step;
-        u_ghosted = u_n;
+        model.import_ghosts(u_n, u_ghosted);
         model.commit_step(u_ghosted, u_n);
-        u_ghosted = u_n;
+        model.import_ghosts(u_n, u_ghosted);
 
         // record: the load factor in the time columns of every file.
         StepFigures figures;

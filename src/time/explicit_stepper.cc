@@ -151,7 +151,7 @@ namespace clothsim
     terms.damping_weight = 1.;
     centre               = u;
     centre -= v;
-    centre_ghosted = centre;
+    model.import_ghosts(centre, centre_ghosted);
     terms.previous = &centre_ghosted;
     return terms;
   }
@@ -168,7 +168,7 @@ namespace clothsim
     // ∇W - f_g - f_ext + (α M + β K(u)) v, zero on pinned dofs; its dissipative part
     // alone is the damping force (α M + β K(u)) v.
     const StepTerms terms = damping_terms(u, v);
-    work_ghosted          = u;
+    model.import_ghosts(u, work_ghosted);
     if (parameters.damping.stiffness_proportional > 0.)
       model.prepare_step(work_ghosted);
     if (damping_force != nullptr)
@@ -194,7 +194,7 @@ namespace clothsim
     for (VectorType *vector : {&u, &v, &a, &u_old})
       model.initialize_owned(*vector);
     model.initial_state(u, v);
-    work_ghosted = u;
+    model.import_ghosts(u, work_ghosted);
 
     CriticalStepEstimator estimator(model, parameters);
     critical = estimator.estimate(work_ghosted);
@@ -281,8 +281,8 @@ namespace clothsim
         time = time_new;
         ++step;
 
-        u_ghosted = u;
-        v_ghosted = v;
+        model.import_ghosts(u, u_ghosted);
+        model.import_ghosts(v, v_ghosted);
         // Verlet: with D(u_{n+1}) v_{n+1} for the next step (K was last prepared at
         // u_{n+1}).
         const EnergyReport energies =

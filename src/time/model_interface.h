@@ -48,6 +48,10 @@ namespace clothsim
     initialize_owned(VectorType &vector) const = 0;
     virtual void
     initialize_ghosted(VectorType &vector) const = 0;
+    // ghosted = owned, for vectors made by the two functions above (faster than
+    // deal.II's assignment on several ranks). Collective.
+    virtual void
+    import_ghosts(const VectorType &owned, VectorType &ghosted) const = 0;
     virtual void
     initialize_matrix(MatrixType &matrix) const = 0;
     virtual NearNullSpace

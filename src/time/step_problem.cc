@@ -90,7 +90,7 @@ namespace clothsim
   {
     owned_point = x;
     owned_point.sadd(c, 1. - c, *path_start);
-    ghosted = owned_point;
+    model.import_ghosts(owned_point, ghosted);
   }
 
 
@@ -102,8 +102,8 @@ namespace clothsim
     TimerOutput::Scope scope(timer, "line search: step cap");
     if (path_start == nullptr)
       {
-        ghosted           = u;
-        ghosted_direction = direction;
+        model.import_ghosts(u, ghosted);
+        model.import_ghosts(direction, ghosted_direction);
         return model.largest_step(ghosted, ghosted_direction, terms.time);
       }
     // The averaged potential reads the path's points q_n + c (x - q_n), which move by
@@ -114,7 +114,7 @@ namespace clothsim
         set_path_point(u, c);
         owned_sum = direction; // scratch
         owned_sum *= c;
-        ghosted_direction = owned_sum;
+        model.import_ghosts(owned_sum, ghosted_direction);
         alpha =
           std::min(alpha, model.largest_step(ghosted, ghosted_direction, terms.time));
       }
@@ -130,7 +130,7 @@ namespace clothsim
       {
         if (!at_cached_point(u))
           {
-            ghosted = u;
+            model.import_ghosts(u, ghosted);
             if (cached_gradient.size() == 0)
               model.initialize_owned(cached_gradient);
             cached_energy = model.assemble(ghosted, terms, &cached_gradient, nullptr);
@@ -165,7 +165,7 @@ namespace clothsim
       {
         if (!at_cached_point(u))
           {
-            ghosted         = u;
+            model.import_ghosts(u, ghosted);
             cached_energy   = model.assemble(ghosted, terms, &F, nullptr);
             cached_point    = u;
             cached_gradient = F;
@@ -191,7 +191,7 @@ namespace clothsim
     terms.projected_tangent = projected;
     if (path_start == nullptr)
       {
-        ghosted = u;
+        model.import_ghosts(u, ghosted);
         assemble_tangent(0, u, J);
         return;
       }

@@ -43,8 +43,8 @@ namespace clothsim
   StepperCore::write_first_frame(const VectorType &u, const VectorType &v)
   {
     wall_clock.restart();
-    u_ghosted  = u;
-    v_ghosted  = v;
+    model.import_ghosts(u, u_ghosted);
+    model.import_ghosts(v, v_ghosted);
     dissipated = 0.;
     write_frame(0, 0.);
     const EnergyReport energies = current_energies();
@@ -119,7 +119,7 @@ namespace clothsim
       return;
     TimerOutput::Scope scope(timer, "energy budget");
     set_increment(u_new, u_old);
-    solved_ghosted = solved;
+    model.import_ghosts(solved, solved_ghosted);
     dissipated += model.dissipated_work(solved_ghosted, terms, increment);
   }
 

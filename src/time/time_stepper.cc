@@ -82,11 +82,11 @@ namespace clothsim
     terms.damping_weight = gamma / h;
     VectorType predictor(centre);
     predictor.add(h / gamma, rate);
-    predictor_ghosted = predictor;
-    centre_ghosted    = centre;
-    terms.predictor   = &predictor_ghosted;
-    terms.previous    = &centre_ghosted;
-    u_new             = predictor; // Newton's initial guess
+    model.import_ghosts(predictor, predictor_ghosted);
+    model.import_ghosts(centre, centre_ghosted);
+    terms.predictor = &predictor_ghosted;
+    terms.previous  = &centre_ghosted;
+    u_new           = predictor; // Newton's initial guess
     model.apply_pinned_displacement(time_new, u_new);
     if (midpoint)
       {
@@ -200,7 +200,7 @@ namespace clothsim
     // and the step solved again, until they settle (0.1 %).
     for (unsigned int update = 1; update < parameters.contact.friction_updates; ++update)
       {
-        check_ghosted = u_new;
+        model.import_ghosts(u_new, check_ghosted);
         if (model.relag_friction(check_ghosted) < 1e-3)
           break;
         newton.invalidate_tangent();
@@ -238,7 +238,7 @@ namespace clothsim
     // check: a collapsed or hundredfold grown triangle is no cloth state (the explicit
     // stepper's divergence test too): the step is cut like a failed Newton solve. A
     // single linearised step of a stiff, fast-rotating sheet can stretch it that far.
-    check_ghosted             = u_new;
+    model.import_ghosts(u_new, check_ghosted);
     const std::string failure = blow_up(check_ghosted);
     if (!failure.empty())
       {
@@ -271,11 +271,11 @@ namespace clothsim
     // The terms' after-step hooks (shell directors re-based, angles back to zero); a
     // linear solution keeps its angles about the reference directors, so that its
     // reactions are taken about the reference state (ClothModel::support_reactions).
-    u_ghosted = u_n;
+    model.import_ghosts(u_n, u_ghosted);
     if (parameters.time.integrator != Integrator::linear_static)
       model.commit_step(u_ghosted, u_n);
-    u_ghosted = u_n;
-    v_ghosted = v_n;
+    model.import_ghosts(u_n, u_ghosted);
+    model.import_ghosts(v_n, v_ghosted);
   }
 
 

@@ -146,8 +146,8 @@ namespace clothsim
     // A changed 'Checkpoint interval' takes effect from the next checkpoint time on.
     if (checkpoint_interval > 0. && loop.next_checkpoint <= loop.time)
       loop.next_checkpoint = loop.time + checkpoint_interval;
-    u_ghosted = u_n;
-    v_ghosted = v_n;
-    resumed   = true;
+    model.import_ghosts(u_n, u_ghosted);
+    model.import_ghosts(v_n, v_ghosted);
+    resumed = true;
   }
 } // namespace clothsim
