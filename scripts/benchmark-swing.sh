@@ -28,6 +28,12 @@
 #                   after the first, which holds one-time work (the direct solver's
 #                   analysis: about 3 s at N = 321) that a long run amortises
 #   status          ok, or FAILED with the time the run reached
+# With more than one rank, a line after the table says how fast the CPUs the ranks run on
+# are: the same one-rank run (N = 161, fem, 0.1 s) pinned to each of CPUs 0 .. R-1 (R the
+# most ranks; mpirun binds rank r to core r), before and after the runs, and the speedup
+# that R ranks splitting the work evenly could reach on them at best, R t_fastest /
+# t_slowest. Virtual machines' CPUs need not be equal (measured here: one 1.4 times
+# slower than the other for tens of minutes), and then no even split reaches R.
 # A run that fails ends the benchmark: the rows measured so far (the failed run's from
 # what it wrote, its iteration counts from its accepted steps only, marked *) are
 # printed, then one line on stderr with clothsim's message, and the exit code is 1. The
@@ -241,6 +247,32 @@ finish() {
 }
 trap 'finish 1; echo "benchmark-swing: interrupted; runs kept in $output" >&2; exit 130' INT TERM
 
+# cpu_times: the time loop's wall time of the check run pinned to each CPU (one line).
+cpu_times() {
+  local cpu times=""
+  for ((cpu = 0; cpu < max_ranks; ++cpu)); do
+    directory="$output/cpu-check/cpu$cpu"
+    mkdir -p "$directory" || die "cannot create '$directory'"
+    taskset -c "$cpu" "$clothsim" "$params" --set "Mesh/Mesh file=$repository/meshes/swing-161.msh" \
+      --set "Time/End time=0.1" --set "Output/Progress=off" "${overrides[@]}" \
+      --set "Model=fem" --output-dir "$directory" >"$directory/run.log" 2>&1 ||
+      { echo "the CPU check on CPU $cpu failed; log: $directory/run.log" >&2; return 1; }
+    times+="$(awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "wall_seconds") w = c }
+                       NR > 1 { t = $w } END { print t + 0 }' "$directory/statistics.csv") "
+  done
+  echo "${times% }"
+}
+max_ranks=$(tr ' ' '\n' <<<"$ranks_list" | sort -n | tail -n 1)
+cpu_before=""
+if [ "$max_ranks" -gt 1 ]; then
+  command -v taskset >/dev/null || die "--ranks: no taskset on the PATH (util-linux)"
+  [ "$(nproc --all)" -ge "$max_ranks" ] || die "--ranks: $max_ranks ranks but $(nproc --all) CPUs"
+  printf 'CPU check (N = 161, fem, 0.1 s, one rank pinned to each CPU) ... ' >&2
+  cpu_before=$(cpu_times) || die "CPU check failed"
+  echo "$cpu_before s" >&2
+fi
+
+
 echo "benchmark-swing: $(basename "$params"), end time $end_time s, sizes $sizes${overrides[*]+, ${overrides[*]}}" >&2
 for n in $sizes; do
   for ranks in $ranks_list; do
@@ -275,4 +307,26 @@ for n in $sizes; do
   done
 done
 print_table
+if [ -n "$cpu_before" ]; then
+  printf 'CPU check again ... ' >&2
+  cpu_after=$(cpu_times) || die "CPU check failed"
+  echo "$cpu_after s" >&2
+  awk -v before="$cpu_before" -v after="$cpu_after" -v ranks="$max_ranks" 'BEGIN {
+    n = split(before, b, " "); split(after, a, " ")
+    for (when = 1; when <= 2; ++when) {
+      line = ""; fastest = 0; slowest = 0
+      for (c = 1; c <= n; ++c) {
+        t = when == 1 ? b[c] : a[c]
+        line = line sprintf("%scpu%d %.2f s", c > 1 ? ", " : "", c - 1, t)
+        if (fastest == 0 || t < fastest) fastest = t
+        if (t > slowest) slowest = t
+      }
+      printf "CPU check %s the runs (N = 161, fem, 0.1 s, one rank pinned to each CPU): %s;\n",
+        when == 1 ? "before" : "after", line
+      printf "  the slowest took %.2f times the fastest, so %d ranks splitting the work evenly\n",
+        slowest / fastest, ranks
+      printf "  on these CPUs are at most %.2f times faster than one rank on the fastest\n",
+        ranks * fastest / slowest
+    } }'
+fi
 finish 0

@@ -78,7 +78,7 @@ namespace clothsim
         earlier_tangent_points[node] = tangent_points[node];
         tangent_points[node]         = x;
       }
-    linearised_from       = earlier_tangent_points[node];
+    model.import_ghosts(earlier_tangent_points[node], linearised_from);
     terms.linearised_from = &linearised_from;
     model.assemble(ghosted, terms, nullptr, &J);
     terms.linearised_from = nullptr;
