@@ -29,15 +29,31 @@ namespace clothsim::mesh
                     const AffineConstraints<double> &constraints)
   {
     Assert(ghosted_map != nullptr, ExcMessage("start() first"));
-    for (const auto &line : constraints.get_lines())
+    // The constrained dofs' local indices, looked up again only when the constraints'
+    // lines differ from the last call's (a hash lookup each on a rank whose indices are
+    // not contiguous; the director angles' unused dofs make one line per vertex).
+    const auto &lines = constraints.get_lines();
+    bool        same  = lines.size() == constrained.size();
+    std::size_t k     = 0;
+    for (auto line = lines.begin(); same && line != lines.end(); ++line, ++k)
+      same = line->index == constrained[k] && line->entries.empty() &&
+             line->inhomogeneity == 0.;
+    if (!same)
       {
-        AssertThrow(line.entries.empty() && line.inhomogeneity == 0.,
-                    ExcMessage("only homogeneous constraints without entries"));
-        const int local =
-          ghosted_map->LID(static_cast<TrilinosWrappers::types::int_type>(line.index));
-        if (local >= 0)
-          sums[local] = 0.;
+        constrained.clear();
+        constrained_local.clear();
+        for (const auto &line : lines)
+          {
+            AssertThrow(line.entries.empty() && line.inhomogeneity == 0.,
+                        ExcMessage("only homogeneous constraints without entries"));
+            constrained.push_back(line.index);
+            constrained_local.push_back(ghosted_map->LID(
+              static_cast<TrilinosWrappers::types::int_type>(line.index)));
+          }
       }
+    for (const int local : constrained_local)
+      if (local >= 0)
+        sums[local] = 0.;
     if (exporter == nullptr)
       exporter =
         std::make_unique<Epetra_Export>(*ghosted_map, owned.trilinos_partitioner());

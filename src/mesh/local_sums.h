@@ -50,8 +50,11 @@ namespace clothsim::mesh
            const AffineConstraints<double> &constraints);
 
   private:
-    std::vector<double>              sums;
-    std::unique_ptr<Epetra_BlockMap> ghosted_map;
-    std::unique_ptr<Epetra_Export>   exporter; // ghosted to owned layout, made once
+    std::vector<double> sums;
+    // The constraints' lines at the last add_to() and their local indices (-1: absent).
+    std::vector<types::global_dof_index> constrained;
+    std::vector<int>                     constrained_local;
+    std::unique_ptr<Epetra_BlockMap>     ghosted_map;
+    std::unique_ptr<Epetra_Export>       exporter; // ghosted to owned layout, made once
   };
 } // namespace clothsim::mesh
