@@ -1,17 +1,20 @@
 #include "physics/strain_limit.h"
 
+#include "mesh/discretization.h"
+
 #include <deal.II/base/mpi.h>
 
 namespace clothsim::physics
 {
   StrainLimitResult
-  limit_strain(const SpringNetwork &springs,
-               const StrainLimit   &limits,
-               const VectorType    &inverse_masses,
-               const double         dt,
-               VectorType          &u,
-               VectorType          &v,
-               VectorType          &u_ghosted)
+  limit_strain(const SpringNetwork        &springs,
+               const StrainLimit          &limits,
+               const VectorType           &inverse_masses,
+               const double                dt,
+               VectorType                 &u,
+               VectorType                 &v,
+               VectorType                 &u_ghosted,
+               const mesh::Discretization &discretization)
   {
     StrainLimitResult result;
     if (limits.limit == 0.)
@@ -26,8 +29,8 @@ namespace clothsim::physics
         result.largest_strain = 0.;
         for (unsigned int color = 0; color < springs.n_colors(); ++color)
           {
-            u_ghosted = u;
-            moves     = 0.;
+            discretization.import_ghosts(u, u_ghosted);
+            moves = 0.;
             result.remaining += Utilities::MPI::sum(
               static_cast<types::global_dof_index>(
                 springs.add_strain_limit_moves(u_ghosted,

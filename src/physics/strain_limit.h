@@ -9,6 +9,11 @@
 #include "physics/spring_network.h"
 #include "physics/term.h"
 
+namespace clothsim::mesh
+{
+  class Discretization;
+}
+
 namespace clothsim::physics
 {
   struct StrainLimit
@@ -25,13 +30,14 @@ namespace clothsim::physics
   };
 
   // `u`, `v` owned; `inverse_masses` ghosted (0 on pinned dofs); `u_ghosted` a ghosted
-  // work vector of the same layout.
+  // work vector of the same layout; all made by `discretization`, which fills the ghosts.
   StrainLimitResult
-  limit_strain(const SpringNetwork &springs,
-               const StrainLimit   &limits,
-               const VectorType    &inverse_masses,
-               const double         dt,
-               VectorType          &u,
-               VectorType          &v,
-               VectorType          &u_ghosted);
+  limit_strain(const SpringNetwork        &springs,
+               const StrainLimit          &limits,
+               const VectorType           &inverse_masses,
+               const double                dt,
+               VectorType                 &u,
+               VectorType                 &v,
+               VectorType                 &u_ghosted,
+               const mesh::Discretization &discretization);
 } // namespace clothsim::physics

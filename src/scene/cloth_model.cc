@@ -158,7 +158,8 @@ namespace clothsim
                                               dt,
                                               u,
                                               v,
-                                              u_ghosted);
+                                              u_ghosted,
+                                              discretization);
     return {result.remaining, result.largest_strain};
   }
 
