@@ -16,15 +16,15 @@ namespace clothsim::mesh
     // The matrix is ours to fill: deal.II hands out its Epetra matrix read-only only.
     auto &crs = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
     if (&crs != matrix_id || crs.NumMyNonzeros() != n_nonzeros ||
-        n_dofs != this->n_dofs || status.size() != n_elements || built_at != generation)
+        n_dofs != this->n_dofs || slot.size() != n_elements || built_at != generation)
       {
         built_at     = generation;
         matrix_id    = &crs;
         n_nonzeros   = crs.NumMyNonzeros();
         this->n_dofs = n_dofs;
-        status.assign(n_elements, Status::unknown);
-        local_rows.assign(std::size_t(n_elements) * n_dofs, -1);
-        positions.assign(std::size_t(n_elements) * n_dofs * n_dofs, 0);
+        slot.assign(n_elements, unknown);
+        local_rows.clear();
+        positions.clear();
       }
     row_values.resize(crs.NumMyRows());
     for (int row = 0; row < crs.NumMyRows(); ++row)
@@ -81,48 +81,55 @@ namespace clothsim::mesh
       {
         // Another constraint set: which elements touch a constrained dof may differ.
         constraints_id = &constraints;
-        status.assign(status.size(), Status::unknown);
+        slot.assign(slot.size(), unknown);
+        local_rows.clear();
+        positions.clear();
       }
-    int *const           rows     = &local_rows[std::size_t(element) * n_dofs];
-    std::uint16_t *const position = &positions[std::size_t(element) * n_dofs * n_dofs];
-    if (status[element] == Status::unknown)
+    if (slot[element] == unknown)
       {
         // Find the entries once: local row, and the column's place in that row.
-        const auto &crs = *static_cast<const Epetra_CrsMatrix *>(matrix_id);
-        status[element] = Status::direct;
+        const auto &crs   = *static_cast<const Epetra_CrsMatrix *>(matrix_id);
+        const auto  first = static_cast<std::ptrdiff_t>(local_rows.size());
+        local_rows.resize(local_rows.size() + n_dofs);
+        positions.resize(positions.size() + std::size_t(n_dofs) * n_dofs);
+        bool direct = true;
         for (const types::global_dof_index dof : dofs)
-          if (constraints.is_constrained(dof))
-            status[element] = Status::other;
-        for (unsigned int i = 0; i < n_dofs && status[element] == Status::direct; ++i)
+          direct = direct && !constraints.is_constrained(dof);
+        for (unsigned int i = 0; i < n_dofs && direct; ++i)
           {
-            rows[i]           = crs.RowMap().LID(static_cast<int>(dofs[i]));
-            int     n_entries = 0;
-            double *row       = nullptr;
-            int    *columns   = nullptr;
-            if (rows[i] < 0 ||
-                crs.ExtractMyRowView(rows[i], n_entries, row, columns) != 0)
-              {
-                status[element] = Status::other;
-                break;
-              }
-            for (unsigned int j = 0; j < n_dofs; ++j)
+            const int row           = crs.RowMap().LID(static_cast<int>(dofs[i]));
+            int       n_entries     = 0;
+            double   *values_of_row = nullptr;
+            int      *columns       = nullptr;
+            direct                  = row >= 0 &&
+                     crs.ExtractMyRowView(row, n_entries, values_of_row, columns) == 0;
+            local_rows[first + i] = row;
+            for (unsigned int j = 0; j < n_dofs && direct; ++j)
               {
                 const int        column = crs.ColMap().LID(static_cast<int>(dofs[j]));
                 const int *const found =
                   column < 0 ? columns + n_entries
                              : std::find(columns, columns + n_entries, column);
-                if (found == columns + n_entries ||
-                    found - columns > std::numeric_limits<std::uint16_t>::max())
-                  {
-                    status[element] = Status::other;
-                    break;
-                  }
-                position[i * n_dofs + j] = static_cast<std::uint16_t>(found - columns);
+                direct = found != columns + n_entries &&
+                         found - columns <= std::numeric_limits<std::uint16_t>::max();
+                positions[first * n_dofs + i * n_dofs + j] =
+                  static_cast<std::uint16_t>(found - columns);
               }
           }
+        if (direct)
+          slot[element] = static_cast<int>(first / n_dofs);
+        else
+          {
+            slot[element] = other;
+            local_rows.resize(first);
+            positions.resize(first * n_dofs);
+          }
       }
-    if (status[element] != Status::direct)
+    if (slot[element] == other)
       return false;
+    const int *const           rows = &local_rows[std::size_t(slot[element]) * n_dofs];
+    const std::uint16_t *const position =
+      &positions[std::size_t(slot[element]) * n_dofs * n_dofs];
     for (unsigned int i = 0; i < n_dofs; ++i)
       {
         double *const        row_of_matrix = row_values[rows[i]];

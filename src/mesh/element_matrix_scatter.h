@@ -72,21 +72,20 @@ namespace clothsim::mesh
                     double                                      value);
 
   private:
-    enum class Status : std::uint8_t
-    {
-      unknown,
-      direct,
-      other
-    };
+    // An element's slot: where its rows and positions are (0, 1, ...), or one of these.
+    static constexpr int unknown = -1; // not looked at since the positions were reset
+    static constexpr int other   = -2; // to be added by the caller
     static inline unsigned long generation     = 0;
     unsigned long               built_at       = 0;
     const void                 *matrix_id      = nullptr;
     const void                 *constraints_id = nullptr;
     int                         n_nonzeros     = -1;
     unsigned int                n_dofs         = 0;
-    // Per element: whether it can be added directly; its rows (local indices) and the
-    // position of each entry (row-major) within its row.
-    std::vector<Status>        status;
+    // Per element its slot; per slot (in the order elements were first added: a term
+    // that adds few of its elements, such as contact pairs, stores only those) the
+    // element's rows (local indices) and the position of each entry (row-major) within
+    // its row.
+    std::vector<int>           slot;
     std::vector<int>           local_rows;
     std::vector<std::uint16_t> positions;
     // The start of each local row's values in the matrix.

@@ -117,7 +117,8 @@ namespace clothsim::physics
             found.clear();
             if (box_of({p}, reach))
               surface.triangle_tree.find(box, found);
-            pair.kappa = cloth.vertices[p].mass * a_per_d;
+            pair.kappa     = cloth.vertices[p].mass * a_per_d;
+            pair.primitive = p;
             for (const unsigned int t : found)
               {
                 const auto &triangle = surface.triangles[t];
@@ -140,6 +141,7 @@ namespace clothsim::physics
               surface.edge_tree.find(box, found);
             pair.kappa =
               0.5 * (cloth.vertices[a].mass + cloth.vertices[b].mass) * a_per_d;
+            pair.primitive = e;
             for (const unsigned int k : found)
               {
                 const auto &edge = surface.edges[k];
@@ -158,8 +160,9 @@ namespace clothsim::physics
         pair.kind      = PairKind::point_triangle;
         pair.moving    = {{false, true, true, true}};
         pair.threshold = 0.;
-        for (const auto &triangle : cloth.triangles)
+        for (unsigned int t = 0; t < cloth.triangles.size(); ++t)
           {
+            const auto &triangle = cloth.triangles[t];
             found.clear();
             if (box_of({triangle[0], triangle[1], triangle[2]}, reach))
               surface.vertex_tree.find(box, found);
@@ -167,6 +170,7 @@ namespace clothsim::physics
               (cloth.vertices[triangle[0]].mass + cloth.vertices[triangle[1]].mass +
                cloth.vertices[triangle[2]].mass) /
               3. * a_per_d;
+            pair.primitive = t;
             for (const unsigned int v : found)
               {
                 pair.index = {{static_cast<int>(v),
@@ -194,6 +198,13 @@ namespace clothsim::physics
     Vector<double>     g;
     FullMatrix<double> H;
     std::vector<types::global_dof_index> dofs;
+    if (hessian != nullptr)
+      for (unsigned int k = 0; k < 3; ++k)
+        pair_scatters[k].start(*hessian,
+                               k == 0   ? cloth.vertices.size()
+                               : k == 1 ? cloth.edges.size()
+                                        : cloth.triangles.size(),
+                               3 * (k + 1));
     for_each_pair(u_local, nullptr, poses, d_hat, [&](const Pair &pair) {
       const PairPoints  x    = pair_points(pair, u_local, poses[pair.obstacle]);
       const double      r    = offset(pair.obstacle);
@@ -215,22 +226,25 @@ namespace clothsim::physics
       if (b.n == 0 || !std::isfinite(b.value))
         return;
       g.reinit(b.n);
-      H.reinit(b.n, b.n);
       dofs.clear();
       for (unsigned int i = 0; i < 4; ++i)
         if (pair.moving[i])
           for (unsigned int c = 0; c < 3; ++c)
             dofs.push_back(cloth.vertices[pair.index[i]].dofs[c]);
       for (unsigned int i = 0; i < b.n; ++i)
-        {
-          g[i] = b.gradient[i];
-          for (unsigned int j = 0; j < b.n; ++j)
-            H(i, j) = b.hessian[i * b.n + j];
-        }
+        g[i] = b.gradient[i];
       if (gradient != nullptr)
         constraints.distribute_local_to_global(g, dofs, *gradient);
-      if (hessian != nullptr)
-        constraints.distribute_local_to_global(H, dofs, *hessian);
+      if (hessian != nullptr &&
+          !pair_scatters[b.n / 3 - 1].add(
+            pair.primitive, dofs, b.hessian.data(), b.n, constraints))
+        {
+          H.reinit(b.n, b.n);
+          for (unsigned int i = 0; i < b.n; ++i)
+            for (unsigned int j = 0; j < b.n; ++j)
+              H(i, j) = b.hessian[i * b.n + j];
+          constraints.distribute_local_to_global(H, dofs, *hessian);
+        }
     });
     return value;
   }

@@ -12,6 +12,7 @@
 // ObstacleContact (physics/contact_term.h), which holds the obstacles and calls it.
 
 #include "mesh/discretization.h"
+#include "mesh/element_matrix_scatter.h"
 #include "physics/cloth_surface.h"
 #include "physics/obstacle.h"
 #include "physics/pair_distance.h"
@@ -124,13 +125,16 @@ namespace clothsim::physics
 
   private:
     // One candidate pair: the four points' sources, cloth (index into `cloth.vertices`)
-    // or obstacle vertex (index into its surface), in PairPoints order.
+    // or obstacle vertex (index into its surface), in PairPoints order, and its cloth
+    // primitive: the index of its vertex, edge or triangle in `cloth` (one, two or three
+    // moving points).
     struct Pair
     {
       PairKind            kind;
       unsigned int        obstacle;
       std::array<bool, 4> moving;
       std::array<int, 4>  index;
+      unsigned int        primitive;
       double              kappa;
       double              threshold; // the mollifier's (edge-edge), else 0
     };
@@ -171,5 +175,8 @@ namespace clothsim::physics
     // obstacles' core features (physics/obstacle.h).
     std::vector<unsigned int> mesh_obstacles;
     ClothSurface              cloth;
+    // The pairs' Hessians added by position, per cloth primitive: its vertices',
+    // edges' and triangles' (one, two and three moving points).
+    mutable std::array<mesh::ElementMatrixScatter, 3> pair_scatters;
   };
 } // namespace clothsim::physics
