@@ -14,10 +14,12 @@ namespace clothsim::mesh
                               const unsigned int              n_dofs)
   {
     // The matrix is ours to fill: deal.II hands out its Epetra matrix read-only only.
-    auto &crs = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
+    auto &crs     = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
+    bool  rebuilt = false;
     if (&crs != matrix_id || crs.NumMyNonzeros() != n_nonzeros ||
         n_dofs != this->n_dofs || slot.size() != n_elements || built_at != generation)
       {
+        rebuilt      = true;
         built_at     = generation;
         matrix_id    = &crs;
         n_nonzeros   = crs.NumMyNonzeros();
@@ -26,15 +28,33 @@ namespace clothsim::mesh
         local_rows.clear();
         positions.clear();
       }
-    row_values.resize(crs.NumMyRows());
-    for (int row = 0; row < crs.NumMyRows(); ++row)
-      {
-        int     n_entries = 0;
-        double *values    = nullptr;
-        int    *columns   = nullptr;
-        crs.ExtractMyRowView(row, n_entries, values, columns);
-        row_values[row] = values;
-      }
+    // Each row's values, looked up again unless the matrix keeps them in one array
+    // (StorageOptimized) that has not moved: a loop over all rows at every start would
+    // cost a large sheet's term with few elements (contact) more than its elements.
+    const int  n_rows = crs.NumMyRows();
+    const auto view   = [&crs](const int row) {
+      int     n_entries = 0;
+      double *values    = nullptr;
+      int    *columns   = nullptr;
+      crs.ExtractMyRowView(row, n_entries, values, columns);
+      return values;
+    };
+    if (!rebuilt && crs.StorageOptimized() && n_rows > 0 &&
+        row_values.size() == std::size_t(n_rows) && row_values.front() == view(0) &&
+        row_values.back() == view(n_rows - 1))
+      return;
+    row_values.resize(n_rows);
+    for (int row = 0; row < n_rows; ++row)
+      row_values[row] = view(row);
+  }
+
+
+  void
+  ElementMatrixScatter::forget()
+  {
+    slot.assign(slot.size(), unknown);
+    local_rows.clear();
+    positions.clear();
   }
 
 
@@ -81,9 +101,7 @@ namespace clothsim::mesh
       {
         // Another constraint set: which elements touch a constrained dof may differ.
         constraints_id = &constraints;
-        slot.assign(slot.size(), unknown);
-        local_rows.clear();
-        positions.clear();
+        forget();
       }
     if (slot[element] == unknown)
       {

@@ -35,6 +35,11 @@ namespace clothsim::mesh
           unsigned int                    n_elements,
           unsigned int                    n_dofs);
 
+    // Forgets the positions found: the elements' dofs changed (a term whose elements
+    // are made anew, such as the contacts lagged for friction at each step).
+    void
+    forget();
+
     // A matrix was made (Discretization::initialize_matrix): every scatter finds its
     // positions again at its next start().
     static void

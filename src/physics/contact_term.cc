@@ -152,6 +152,7 @@ namespace clothsim::physics
   {
     last_dt = t_new - t_n;
     lagged.clear();
+    ++n_lags;
     carried_points.assign(table.size() * obstacles.size(), Point<3>());
     const double                 d_hat = settings.thickness;
     const std::vector<RigidPose> start = poses_at(t_n), end = poses_at(t_new);
@@ -306,6 +307,7 @@ namespace clothsim::physics
       else
         mesh_before.push_back(contact.mu_lambda);
     lagged.clear();
+    ++n_lags;
     double largest = 0., change = 0.;
     for (unsigned int k = 0; k < table.size(); ++k)
       for (unsigned int o = 0; o < n_obstacles; ++o)

@@ -87,6 +87,17 @@ namespace clothsim::physics
     {
       return u.trilinos_vector()[0];
     }
+    // How many times the contacts were lagged anew: what a user derived from the list
+    // (physics/friction_term.h: the matrix positions of each contact) is stale once it
+    // changes.
+    unsigned long
+    lag_count() const
+    {
+      return n_lags;
+    }
+
+  protected:
+    unsigned long n_lags = 0;
   };
 
   // Two unit vectors spanning the plane perpendicular to the unit n.

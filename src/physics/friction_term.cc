@@ -27,8 +27,19 @@ namespace clothsim::physics
     Vector<double>                       g;
     FullMatrix<double>                   H;
     std::vector<types::global_dof_index> dofs;
-    for (const LaggedContact &lagged : contact.lagged_contacts())
+    const std::vector<LaggedContact>    &contacts = contact.lagged_contacts();
+    if (hessian != nullptr)
       {
+        if (scattered_lags != contact.lag_count())
+          for (mesh::ElementMatrixScatter &scatter : scatters)
+            scatter.forget();
+        scattered_lags = contact.lag_count();
+        for (unsigned int k = 0; k < scatters.size(); ++k)
+          scatters[k].start(*hessian, contacts.size(), 3 * (k + 1));
+      }
+    for (unsigned int index = 0; index < contacts.size(); ++index)
+      {
+        const LaggedContact &lagged = contacts[index];
         // r = Σ w_i (x_i - c_i), the slip u_T = Tᵀ r.
         Tensor<1, 3> r;
         for (unsigned int i = 0; i < lagged.n_points; ++i)
@@ -101,7 +112,8 @@ namespace clothsim::physics
           {
             if (gradient != nullptr)
               constraints.distribute_local_to_global(g, dofs, *gradient);
-            if (full != nullptr)
+            if (full != nullptr &&
+                !scatters[lagged.n_points - 1].add(index, dofs, H, constraints))
               constraints.distribute_local_to_global(H, dofs, *full);
           }
       }

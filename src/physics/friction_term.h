@@ -14,7 +14,10 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include "mesh/element_matrix_scatter.h"
 #include "physics/contact_term.h"
+
+#include <array>
 
 #include <string>
 #include <vector>
@@ -64,5 +67,10 @@ namespace clothsim::physics
                    MatrixType                                 *hessian);
 
     const LaggedContacts &contact;
+    // The tangents of contacts with 1, 2, 3 and 4 points, all of this rank, added by
+    // position (element: the contact's index in the lagged list), found anew for each
+    // list (lag_count).
+    mutable std::array<mesh::ElementMatrixScatter, 4> scatters;
+    mutable unsigned long                             scattered_lags = 0;
   };
 } // namespace clothsim::physics

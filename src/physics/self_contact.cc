@@ -487,6 +487,7 @@ namespace clothsim::physics
   SelfContact::lag_friction(const VectorType &u_n, const double dt)
   {
     lagged.clear();
+    ++n_lags;
     last_dt = dt;
     if (friction == 0.)
       return;
