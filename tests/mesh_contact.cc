@@ -23,6 +23,12 @@
 //    (its apex vertex against cloth triangles, its edges against cloth edges, cloth
 //    vertices against its faces): the step potential's gradient and Hessian against
 //    differences (relative 1e-5), friction static and kinetic.
+// 7. The list of near pairs that evaluations reuse (MeshContact::for_each_near_pair)
+//    against a full search: along a path that moves the sheet's vertices near the apex
+//    by up to 0.9 mm per state (25 states, pairs coming within d̂ = 5 mm and leaving; the
+//    list kept while no vertex has moved by d̂ and made again after), the barrier and
+//    its gradient of one contact term equal those of a new term at every state, to the
+//    last bit.
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -498,13 +504,13 @@ namespace
         {{0, 1}}, {{0, 2}}, {{0, 3}}, {{0, 4}}, {{1, 2}}, {{2, 3}}, {{3, 4}}, {{4, 1}}});
   }
 
-  bool
-  check_terms(ConditionalOStream &pcout, const std::string &mesh)
+  // The pyramid as a static obstacle with μ = 0.4 for the unit square sheet at z = 0:
+  // its apex 2 mm below a point inside a triangle, off the mesh's lines.
+  std::vector<physics::Obstacle>
+  pyramid_obstacle()
   {
     physics::ObstacleShape shape;
-    shape.core = physics::ObstacleCore::mesh;
-    // The sheet is the unit square at z = 0; the apex 2 mm below a point inside a
-    // triangle, off the mesh's lines.
+    shape.core    = physics::ObstacleCore::mesh;
     shape.surface = pyramid(Point<3>(0.513, 0.487, -0.002));
     std::vector<physics::Obstacle> obstacles;
     obstacles.emplace_back(
@@ -514,7 +520,64 @@ namespace
       [](double) { return Tensor<1, 3>(); },
       Tensor<1, 3>({0., 0., 1.}),
       [](double) { return 0.; });
-    return check_contact_terms(pcout, mesh, obstacles, 3);
+    return obstacles;
+  }
+
+  bool
+  check_terms(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    return check_contact_terms(pcout, mesh, pyramid_obstacle(), 3);
+  }
+
+  bool
+  check_near_list(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    const std::vector<physics::Obstacle> obstacles = pyramid_obstacle();
+    const auto scene = load_scene(source_path("params/contact/sheet-on-sphere.prm"),
+                                  {"Mesh/Mesh file=" + mesh},
+                                  MPI_COMM_WORLD);
+    const ClothModel &model = *scene->model;
+    VectorType        masses;
+    model.lumped_masses(masses);
+    const ContactParameters       &given = scene->parameters().contact;
+    const physics::ContactSettings settings{given.thickness,
+                                            given.barrier_acceleration,
+                                            given.slip_velocity};
+    const auto                     contact_model = [&]() {
+      auto terms = std::make_unique<physics::Model>(model.get_discretization(),
+                                                    model.get_constraints());
+      terms->add(std::make_unique<physics::ObstacleContact>(
+        obstacles, settings, model.get_discretization(), masses));
+      return terms;
+    };
+    const std::unique_ptr<physics::Model> kept = contact_model();
+
+    VectorType path, u, ghosted, g_kept, g_new;
+    for (VectorType *vector : {&path, &u, &g_kept, &g_new})
+      model.initialize_owned(*vector);
+    model.initialize_ghosted(ghosted);
+    fill(model, path, 1e-3, 0., 7);
+    StepTerms    step;
+    unsigned int differing = 0, in_contact = 0;
+    double       largest = 0.;
+    for (unsigned int k = 0; k < 25; ++k)
+      {
+        u = path;
+        u *= 0.5 * k; // up to 12 mm per coordinate
+        ghosted             = u;
+        g_kept              = 0.;
+        g_new               = 0.;
+        const double e_kept = kept->assemble(ghosted, step, &g_kept, nullptr);
+        const double e_new  = contact_model()->assemble(ghosted, step, &g_new, nullptr);
+        g_kept -= g_new;
+        differing += e_kept != e_new || g_kept.linfty_norm() != 0.;
+        in_contact += e_new > 0.;
+        largest = std::max(largest, e_new);
+      }
+    pcout << "  near pairs' list: " << in_contact << " of 25 states in contact, largest "
+          << "barrier " << largest << " J" << std::endl;
+    return check_at_least(pcout, "states in contact", in_contact, 20u) &
+           check_equal(pcout, "states whose barrier or gradient differ", differing, 0u);
   }
 } // namespace
 
@@ -537,8 +600,10 @@ main(int argc, char **argv)
   passed &= check_tree(pcout);
   pcout << "Terms: a sheet over a pyramid" << std::endl;
   const std::filesystem::path root = scratch_directory("clothsim-mesh-contact");
-  passed &=
-    check_terms(pcout,
-                scratch_mesh(root / "mesh", {"swing-21.geo", "swing-grid.geo.inc"}));
+  const std::string           mesh =
+    scratch_mesh(root / "mesh", {"swing-21.geo", "swing-grid.geo.inc"});
+  passed &= check_terms(pcout, mesh);
+  pcout << "Near pairs' list against a full search" << std::endl;
+  passed &= check_near_list(pcout, mesh);
   return finish(pcout, passed);
 }

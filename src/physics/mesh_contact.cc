@@ -184,6 +184,42 @@ namespace clothsim::physics
   }
 
 
+  void
+  MeshContact::for_each_near_pair(const double                            *u_local,
+                                  const std::vector<RigidPose>            &poses,
+                                  const std::function<void(const Pair &)> &visit) const
+  {
+    const double d_hat  = settings.thickness;
+    const double margin = 2. * d_hat;
+    bool         same   = !near_from.empty() && near_poses.size() == poses.size();
+    for (unsigned int o = 0; same && o < poses.size(); ++o)
+      same = near_poses[o].rotation == poses[o].rotation &&
+             near_poses[o].translation == poses[o].translation;
+    double moved = 0.;
+    for (unsigned int p = 0; same && p < near_from.size(); ++p)
+      moved = std::max(moved, cloth.position(p, u_local).distance_square(near_from[p]));
+    if (!same || moved > (margin - d_hat) * (margin - d_hat))
+      {
+        near_pairs.clear();
+        for_each_pair(u_local, nullptr, poses, margin, [&](const Pair &pair) {
+          const double d =
+            std::sqrt(
+              pair_squared_distance(pair.kind,
+                                    pair_points(pair, u_local, poses[pair.obstacle]))) -
+            offset(pair.obstacle);
+          if (d < margin)
+            near_pairs.push_back(pair);
+        });
+        near_from.resize(cloth.vertices.size());
+        for (unsigned int p = 0; p < near_from.size(); ++p)
+          near_from[p] = cloth.position(p, u_local);
+        near_poses = poses;
+      }
+    for (const Pair &pair : near_pairs)
+      visit(pair);
+  }
+
+
   double
   MeshContact::add_to_step(const double                    *u_local,
                            const std::vector<RigidPose>    &poses,
@@ -205,7 +241,7 @@ namespace clothsim::physics
                                : k == 1 ? cloth.edges.size()
                                         : cloth.triangles.size(),
                                3 * (k + 1));
-    for_each_pair(u_local, nullptr, poses, d_hat, [&](const Pair &pair) {
+    for_each_near_pair(u_local, poses, [&](const Pair &pair) {
       const PairPoints  x    = pair_points(pair, u_local, poses[pair.obstacle]);
       const double      r    = offset(pair.obstacle);
       const PairHessian form = !projected ? PairHessian::exact

@@ -7,7 +7,8 @@
 // κ = m a_b / d̂ and m the mean lumped mass of the pair's cloth vertices. So a sharp
 // obstacle edge or corner cannot pass between the cloth's vertices. Candidate pairs come
 // from the obstacle's bounding-volume hierarchies, queried in its body frame (built
-// once: the obstacles are rigid). The line search is capped by continuous collision
+// once: the obstacles are rigid); the barrier's evaluations reuse a list of the pairs
+// closer than 2 d̂ (for_each_near_pair). The line search is capped by continuous collision
 // detection of every pair whose swept boxes meet (pair_step_bound). A part of
 // ObstacleContact (physics/contact_term.h), which holds the obstacles and calls it.
 
@@ -168,6 +169,16 @@ namespace clothsim::physics
                   const std::function<void(const Pair &)> &visit,
                   const unsigned int only = numbers::invalid_unsigned_int) const;
 
+    // Calls `visit` for every pair that may be closer than d̂ at u, the obstacles at
+    // `poses`: from a list of the pairs closer than 2 d̂ at an earlier state with the
+    // same poses, kept while no cloth vertex has moved by more than d̂ from it (a pair's
+    // distance changes by at most the largest motion of its cloth points), else made
+    // again here. The pairs come in for_each_pair's order.
+    void
+    for_each_near_pair(const double                            *u_local,
+                       const std::vector<RigidPose>            &poses,
+                       const std::function<void(const Pair &)> &visit) const;
+
     const std::vector<Obstacle> &obstacles;
     const MPI_Comm               communicator;
     const ContactSettings       &settings;
@@ -178,5 +189,9 @@ namespace clothsim::physics
     // The pairs' Hessians added by position, per cloth primitive: its vertices',
     // edges' and triangles' (one, two and three moving points).
     mutable std::array<mesh::ElementMatrixScatter, 3> pair_scatters;
+    // for_each_near_pair's list, the cloth's positions and the poses it was made at.
+    mutable std::vector<Pair>      near_pairs;
+    mutable std::vector<Point<3>>  near_from;
+    mutable std::vector<RigidPose> near_poses;
   };
 } // namespace clothsim::physics
