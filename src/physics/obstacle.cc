@@ -3,6 +3,8 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/numbers.h>
 
+#include "physics/pair_distance.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -346,6 +348,29 @@ namespace clothsim::physics
     // Affine along the triangle: its minimum is at a corner.
     if (body_shape.core == ObstacleCore::half_space)
       return std::min({d(0., 0.), d(1., 0.), d(0., 1.)});
+    const Point<3> y1(y0 + e1), y2(y0 + e2);
+    // A ball: its centre's distance from the triangle, less the radius.
+    if (body_shape.core == ObstacleCore::point)
+      return std::sqrt(pair_squared_distance(PairKind::point_triangle,
+                                             {{body_shape.center, y0, y1, y2}})) -
+             body_shape.radius;
+    // A capsule: its segment's distance from the triangle (zero where it passes
+    // through; else attained at an end of the segment or on an edge of the triangle).
+    if (body_shape.core == ObstacleCore::segment)
+      {
+        const Point<3> a(body_shape.center - body_shape.half_length * body_shape.axis);
+        const Point<3> b(body_shape.center + body_shape.half_length * body_shape.axis);
+        if (segment_crosses_triangle(a, b, y0, y1, y2))
+          return -body_shape.radius;
+        double squared =
+          std::min(pair_squared_distance(PairKind::point_triangle, {{a, y0, y1, y2}}),
+                   pair_squared_distance(PairKind::point_triangle, {{b, y0, y1, y2}}));
+        for (const auto &[p, q] :
+             {std::pair(y0, y1), std::pair(y1, y2), std::pair(y2, y0)})
+          squared =
+            std::min(squared, pair_squared_distance(PairKind::edge_edge, {{a, b, p, q}}));
+        return std::sqrt(squared) - body_shape.radius;
+      }
     // f(a, b) = d(y0 + a e1 + b e2) over a, b >= 0, a + b <= 1; an interval of length
     // τ/|e| in a barycentric coordinate moves the point by less than τ.
     const double longest = std::max({e1.norm(), e2.norm(), (e2 - e1).norm()});

@@ -140,7 +140,9 @@ namespace clothsim::physics
     // `pose`, to within `tolerance` (m; from above): between its corners a triangle can
     // come closer than they do, e.g. to a sphere or rod narrower than the triangle. The
     // signed distance of a convex set is convex, and so is its minimum over one
-    // barycentric coordinate: nested golden-section searches.
+    // barycentric coordinate: nested golden-section searches. Exact for a sphere and a
+    // capsule: the distance of the triangle from the core's point or segment, less the
+    // radius.
     double
     triangle_distance(const RigidPose               &pose,
                       const std::array<Point<3>, 3> &x,
