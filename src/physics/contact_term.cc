@@ -476,11 +476,27 @@ namespace clothsim::physics
             if (core == ObstacleCore::mesh || core == ObstacleCore::half_space)
               continue;
             // d is 1-Lipschitz: no point of the triangle is closer than its nearest
-            // corner minus its longest edge.
+            // corner minus its longest edge. And d is convex (the obstacle is): where it
+            // is differentiable, outside, its tangent plane at a corner lies below it,
+            // d(p) >= d_i + ∇d_i·(p - x_i), which is least over the triangle at a corner
+            // (exact where d is affine: a triangle on a flat face).
+            std::array<SignedDistance, 3> at;
             double corner = std::numeric_limits<double>::infinity();
-            for (const Point<3> &p : x)
-              corner = std::min(corner, obstacles[o].distance(poses[o], p, false).value);
-            if (corner - longest >= min_distance)
+            for (unsigned int i = 0; i < 3; ++i)
+              {
+                at[i]  = obstacles[o].distance(poses[o], x[i], true);
+                corner = std::min(corner, at[i].value);
+              }
+            double bound = corner - longest;
+            if (corner > 0.)
+              for (unsigned int i = 0; i < 3; ++i)
+                {
+                  double least = 0.;
+                  for (unsigned int j = 0; j < 3; ++j)
+                    least = std::min(least, at[i].gradient * (x[j] - x[i]));
+                  bound = std::max(bound, at[i].value + least);
+                }
+            if (bound >= min_distance)
               continue;
             min_distance =
               std::min(min_distance,
