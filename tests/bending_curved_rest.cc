@@ -32,6 +32,8 @@
 //     left the new vertices on the coarse facets, the rest curvature would concentrate on
 //     the coarse edges and this energy would grow like 1/h instead.
 
+#include <deal.II/dofs/dof_handler.h>
+
 #include "test_support.h"
 
 #include <cmath>

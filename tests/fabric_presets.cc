@@ -3,6 +3,8 @@
 // gf·cm²/cm = 9.807e-5 N·m, 1 mg/cm² = 0.01 kg/m²; E h from E and h), and an entry set in
 // the file or with --set overrides the preset while the others stay.
 
+#include <deal.II/base/parameter_handler.h>
+
 #include "io/parameters.h"
 #include "test_checks.h"
 

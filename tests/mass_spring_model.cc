@@ -16,6 +16,8 @@
 // 4. Provot's strain limit (ClothModel::limit_strain) on a sheet stretched 20 %: every
 //    spring ends within 10 % (+0.1 % tolerance), centre of mass and momentum unchanged.
 
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/dofs/dof_handler.h>
 #include <deal.II/grid/tria.h>
 #include <deal.II/grid/tria_description.h>
 

@@ -17,6 +17,8 @@
 //    111), and the probes within a quarter of the dt/2 difference of the tight run
 //    (measured: 1.7e-5 m).
 
+#include <deal.II/base/parameter_handler.h>
+
 #include "extreme_runs.h"
 #include "io/parameters.h"
 #include "solvers/newton_solver.h"

@@ -48,6 +48,8 @@
 // table at the end. The runs and the checks a, b and d are in extreme_runs.h (shared with
 // swing_extremes.cc).
 
+#include <deal.II/dofs/dof_handler.h>
+
 #include "extreme_runs.h"
 
 #include <algorithm>

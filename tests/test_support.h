@@ -216,12 +216,11 @@ namespace clothsim::test
     model.initialize_owned(forces);
     model.internal_forces(u, forces);
     std::set<types::global_dof_index> edge;
-    for (const auto &cell : model.get_dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (unsigned int v = 0; v < 3; ++v)
-          if (std::abs(cell->vertex(v)[0] - x_edge) < 1e-12 &&
-              model.owned_dofs().is_element(cell->vertex_dof_index(v, 0)))
-            edge.insert(cell->vertex_dof_index(v, 0));
+    for (const auto &element : model.get_discretization().elements())
+      for (unsigned int v = 0; v < 3; ++v)
+        if (std::abs(element.reference[v][0] - x_edge) < 1e-12 &&
+            model.owned_dofs().is_element(element.dofs[3 * v]))
+          edge.insert(element.dofs[3 * v]);
     double force = 0.;
     for (const auto dof : edge)
       force += forces[dof];

@@ -1,6 +1,7 @@
 #include "app/convergence_study.h"
 
 #include <deal.II/base/convergence_table.h>
+#include <deal.II/grid/tria.h>
 
 #include "app/study_run.h"
 #include "io/collective.h"
@@ -282,7 +283,9 @@ namespace clothsim
                              std::to_string(finest.global_refinements) +
                              ", beyond its largest value 8");
         const mesh::MemoryEstimate estimate =
-          mesh::estimate_memory(communicator, base->serial_mesh.n_active_cells(), finest);
+          mesh::estimate_memory(communicator,
+                                base->serial_mesh->n_active_cells(),
+                                finest);
         if (!estimate.fits())
           throw InputError(file, "--space", estimate.shortage());
       }

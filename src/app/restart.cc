@@ -1,5 +1,6 @@
 #include "app/restart.h"
 
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/utilities.h>
 
 #include "app/scene_runner.h"
@@ -117,7 +118,7 @@ namespace clothsim
   checkpoint_record(const Scene &scene)
   {
     io::CheckpointData record;
-    record.set_text("run parameters", short_prm(scene.prm));
+    record.set_text("run parameters", short_prm(*scene.prm));
     record.set_text("run input directory",
                     fs::absolute(scene.input.directory.empty() ? "."
                                                                : scene.input.directory)
@@ -167,11 +168,11 @@ namespace clothsim
     for (std::size_t k = 0; k < n_mesh_overrides; ++k)
       {
         const std::string entry = override_entry(all_overrides[k]);
-        set_entry(scene->prm, entry, saved.at(entry));
+        set_entry(*scene->prm, entry, saved.at(entry));
       }
 
     // Nothing but the changeable entries may differ from the checkpoint's run.
-    const std::map<std::string, std::string> now = entries(short_prm(scene->prm));
+    const std::map<std::string, std::string> now = entries(short_prm(*scene->prm));
     for (const auto &[entry, value] : now)
       {
         const auto        found = saved.find(entry);

@@ -2,7 +2,9 @@
 
 #include "app/restart.h"
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/timer.h>
+#include <deal.II/dofs/dof_handler.h>
 
 #include "io/collective.h"
 #include "io/input_error.h"
@@ -298,11 +300,11 @@ namespace clothsim
       if (!is_root)
         return;
       if (options.resume_run != nullptr)
-        write_parameter_copy(directory, scene.prm, provenance);
+        write_parameter_copy(directory, *scene.prm, provenance);
       else
         {
           prepare_output_directory(directory);
-          write_input_copies(directory, scene.input, scene.prm, provenance);
+          write_input_copies(directory, scene.input, *scene.prm, provenance);
         }
     });
 

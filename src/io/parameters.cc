@@ -5,6 +5,8 @@
 
 #include "io/parameters.h"
 
+#include <deal.II/base/parameter_handler.h>
+
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 

@@ -4,13 +4,17 @@
 // in deal.II step-44). Units are in each entry's documentation; `clothsim
 // --print-parameters` lists them all.
 
-#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/point.h>
 
 #include <array>
 #include <ostream>
 #include <string>
 #include <vector>
+
+namespace dealii
+{
+  class ParameterHandler; // <deal.II/base/parameter_handler.h>, in the files that use it
+}
 
 namespace clothsim
 {

@@ -5,7 +5,9 @@
 
 #include "io/input_error.h"
 #include "io/parameters.h"
+
 #include "io/parameters_detail.h"
+#include <deal.II/base/parameter_handler.h>
 
 namespace clothsim
 {

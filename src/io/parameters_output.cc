@@ -2,6 +2,8 @@
 
 #include "io/parameters.h"
 
+#include <deal.II/base/parameter_handler.h>
+
 #include <deal.II/base/utilities.h>
 
 #include "io/input_error.h"

@@ -4,6 +4,8 @@
 #include "io/parameter_errors.h"
 #include "io/parameters.h"
 
+#include <deal.II/base/parameter_handler.h>
+
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 

@@ -3,6 +3,8 @@
 
 #include "io/parameters.h"
 
+#include <deal.II/base/parameter_handler.h>
+
 #include "io/input_error.h"
 #include "io/parameters_detail.h"
 

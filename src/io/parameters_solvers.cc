@@ -3,6 +3,8 @@
 
 #include "io/parameters.h"
 
+#include <deal.II/base/parameter_handler.h>
+
 namespace clothsim
 {
   namespace

@@ -1,8 +1,12 @@
 #include "mesh/discretization.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
+#include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_simplex_p.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_fe.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 #include <deal.II/grid/tria_description.h>
@@ -48,18 +52,37 @@ namespace clothsim::mesh
                                  const MeshSetup           &setup)
     : communicator(communicator)
     , setup(setup)
-    , triangulation(communicator)
+    , triangulation(
+        std::make_unique<parallel::fullydistributed::Triangulation<2, 3>>(communicator))
     , fe(setup.directors ? std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1),
                                                             3,
                                                             FE_SimplexP<2, 3>(2),
                                                             1)
                          : std::make_unique<FESystem<2, 3>>(FE_SimplexP<2, 3>(1), 3))
-    , mapping(FE_SimplexP<2, 3>(1))
+    , mapping(std::make_unique<MappingFE<2, 3>>(FE_SimplexP<2, 3>(1)))
+    , dof_handler(std::make_unique<DoFHandler<2, 3>>())
   {
     build_mesh(serial_mesh);
     setup_dofs();
     if (setup.directors)
       setup_edges();
+  }
+
+
+  Discretization::~Discretization() = default;
+
+
+  types::global_dof_index
+  Discretization::n_dofs() const
+  {
+    return dof_handler->n_dofs();
+  }
+
+
+  types::global_cell_index
+  Discretization::n_triangles() const
+  {
+    return triangulation->n_global_active_cells();
   }
 
 
@@ -91,24 +114,24 @@ namespace clothsim::mesh
     // The distributed triangulation repeats the refinement from the coarse cells: it
     // needs the surface too.
     if (surface != nullptr)
-      triangulation.set_manifold(1, *surface);
-    triangulation.create_triangulation(description);
+      triangulation->set_manifold(1, *surface);
+    triangulation->create_triangulation(description);
   }
 
 
   void
   Discretization::setup_dofs()
   {
-    dof_handler.reinit(triangulation);
-    dof_handler.distribute_dofs(*fe);
-    locally_owned_dofs = dof_handler.locally_owned_dofs();
-    DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
+    dof_handler->reinit(*triangulation);
+    dof_handler->distribute_dofs(*fe);
+    locally_owned_dofs = dof_handler->locally_owned_dofs();
+    DoFTools::extract_locally_relevant_dofs(*dof_handler, locally_relevant_dofs);
     owned_prototype.reinit(locally_owned_dofs, communicator);
     ghosted_prototype.reinit(locally_owned_dofs, locally_relevant_dofs, communicator);
     ghost_import =
       std::make_unique<const Epetra_Import>(ghosted_prototype.trilinos_vector().Map(),
                                             owned_prototype.trilinos_vector().Map());
-    vertex_count = DoFTools::count_dofs_per_fe_component(dof_handler)[0];
+    vertex_count = DoFTools::count_dofs_per_fe_component(*dof_handler)[0];
 
     // local dof -> (vertex, component) for the displacements (the P1 base element's dof
     // k sits on vertex k); the angle component (4th) is handled in setup_edges().
@@ -124,7 +147,7 @@ namespace clothsim::mesh
     std::vector<types::global_dof_index> dof_indices(fe->n_dofs_per_cell());
     element_table.clear();
     std::vector<types::global_dof_index> owned_displacements;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &cell : dof_handler->active_cell_iterators())
       if (cell->is_locally_owned())
         {
           cell->get_dof_indices(dof_indices);
@@ -164,7 +187,7 @@ namespace clothsim::mesh
     owned_displacements.erase(std::unique(owned_displacements.begin(),
                                           owned_displacements.end()),
                               owned_displacements.end());
-    displacement_dofs = IndexSet(dof_handler.n_dofs());
+    displacement_dofs = IndexSet(dof_handler->n_dofs());
     displacement_dofs.add_indices(owned_displacements.begin(), owned_displacements.end());
     displacement_dofs.compress();
   }
@@ -182,7 +205,7 @@ namespace clothsim::mesh
     initialize_ghosted(prototype);
     edge_table.clear();
     unsigned int e = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
+    for (const auto &cell : dof_handler->active_cell_iterators())
       if (!cell->is_artificial())
         {
           cell->get_dof_indices(dof_indices);
@@ -292,7 +315,7 @@ namespace clothsim::mesh
                                                locally_owned_dofs,
                                                locally_relevant_dofs,
                                                communicator);
-    DoFTools::make_sparsity_pattern(dof_handler, sparsity, constraints, false);
+    DoFTools::make_sparsity_pattern(*dof_handler, sparsity, constraints, false);
     if (add_couplings)
       add_couplings(sparsity);
     sparsity.compress();

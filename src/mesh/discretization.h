@@ -14,16 +14,18 @@
 // order (lexicographic in the reference coordinates) and its rest director (bisector of
 // the two rest normals, the normal on the boundary).
 
-#include <deal.II/distributed/fully_distributed_tria.h>
-#include <deal.II/dofs/dof_handler.h>
-#include <deal.II/fe/fe_system.h>
-#include <deal.II/fe/mapping_fe.h>
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
+#include <deal.II/base/types.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <Epetra_Import.h>
+
+#include "mesh/dealii_declarations.h"
 
 
 #include <array>
@@ -99,6 +101,7 @@ namespace clothsim
       Discretization(const MPI_Comm             communicator,
                      const Triangulation<2, 3> &serial_mesh,
                      const MeshSetup           &setup);
+      ~Discretization();
 
       MPI_Comm
       get_communicator() const
@@ -108,12 +111,12 @@ namespace clothsim
       const DoFHandler<2, 3> &
       get_dof_handler() const
       {
-        return dof_handler;
+        return *dof_handler;
       }
       const MappingFE<2, 3> &
       get_mapping() const
       {
-        return mapping;
+        return *mapping;
       }
       const FESystem<2, 3> &
       get_fe() const
@@ -145,20 +148,14 @@ namespace clothsim
         return angles;
       }
       types::global_dof_index
-      n_dofs() const
-      {
-        return dof_handler.n_dofs();
-      }
+      n_dofs() const;
       unsigned int
       n_vertices() const
       {
         return vertex_count;
       }
       types::global_cell_index
-      n_triangles() const
-      {
-        return triangulation.n_global_active_cells();
-      }
+      n_triangles() const;
       bool
       has_directors() const
       {
@@ -269,13 +266,14 @@ namespace clothsim
       void
       setup_edges();
 
-      MPI_Comm                                           communicator;
-      MeshSetup                                          setup;
-      parallel::fullydistributed::Triangulation<2, 3>    triangulation;
-      std::unique_ptr<FESystem<2, 3>>                    fe;
-      MappingFE<2, 3>                                    mapping;
-      DoFHandler<2, 3>                                   dof_handler;
-      IndexSet                                           locally_owned_dofs;
+      MPI_Comm  communicator;
+      MeshSetup setup;
+      // Destroyed in reverse order: the dofs before the mesh they live on.
+      std::unique_ptr<parallel::fullydistributed::Triangulation<2, 3>> triangulation;
+      std::unique_ptr<FESystem<2, 3>>                                  fe;
+      std::unique_ptr<MappingFE<2, 3>>                                 mapping;
+      std::unique_ptr<DoFHandler<2, 3>>                                dof_handler;
+      IndexSet                                                         locally_owned_dofs;
       IndexSet                                           locally_relevant_dofs;
       VectorType                                         owned_prototype;   // zero
       VectorType                                         ghosted_prototype; // zero

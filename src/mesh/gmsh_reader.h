@@ -5,7 +5,9 @@
 // "loaded", ...).
 
 #include <deal.II/base/point.h>
-#include <deal.II/grid/tria.h>
+#include <deal.II/base/types.h>
+
+#include "mesh/dealii_declarations.h"
 
 #include <map>
 #include <string>

@@ -5,6 +5,7 @@
 // Triangulation and MeshGroups. Not part of the interface.
 
 #include <deal.II/base/point.h>
+#include <deal.II/grid/tria.h>
 #include <deal.II/grid/tria_description.h>
 
 #include "mesh/gmsh_reader.h"

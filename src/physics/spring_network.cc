@@ -3,6 +3,7 @@
 #include "mesh/ghosted_values.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/full_matrix.h>
 
 #include <algorithm>

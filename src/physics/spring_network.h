@@ -17,12 +17,12 @@
 // the cell with the smaller CellId among the edge's two), so energies and forces are
 // summed once under MPI.
 
-#include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include "mesh/dealii_declarations.h"
 #include "mesh/element_matrix_scatter.h"
 #include "mesh/local_sums.h"
 #include "physics/mass_spring.h"

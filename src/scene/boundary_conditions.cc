@@ -1,6 +1,9 @@
 #include "scene/boundary_conditions.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/grid/tria.h>
 
 #include "io/input_error.h"
 

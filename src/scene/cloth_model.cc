@@ -1,6 +1,7 @@
 #include "scene/cloth_model.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/tria.h>
 
 #include "io/input_error.h"
 #include "mesh/memory_estimate.h"

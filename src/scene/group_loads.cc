@@ -1,6 +1,8 @@
 #include "scene/group_loads.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
 
 #include "io/input_error.h"
 #include "scene/boundary_conditions.h"

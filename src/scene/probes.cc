@@ -2,6 +2,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <boost/serialization/utility.hpp>
+
 #include "io/input_error.h"
 #include "physics/pair_distance.h"
 

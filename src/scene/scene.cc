@@ -1,6 +1,8 @@
 #include "scene/scene.h"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/grid/tria.h>
 
 #include "io/collective.h"
 #include "io/input_error.h"
@@ -25,13 +27,22 @@ namespace clothsim
   } // namespace
 
 
+  Scene::Scene()
+    : prm(std::make_unique<ParameterHandler>())
+    , serial_mesh(std::make_unique<Triangulation<2, 3>>())
+  {}
+
+
+  Scene::~Scene() = default;
+
+
   std::unique_ptr<Scene>
   load_scene(const std::string              &parameter_file,
              const std::vector<std::string> &overrides,
              const MPI_Comm                  communicator)
   {
     auto scene       = std::make_unique<Scene>();
-    scene->input     = read_parameters(scene->prm, parameter_file, overrides);
+    scene->input     = read_parameters(*scene->prm, parameter_file, overrides);
     scene->mesh_file = resolve_mesh_file(scene->input);
 
     // Rank 0 first: it may have to generate the .msh from its .geo. An error on any
@@ -39,17 +50,17 @@ namespace clothsim
     const bool is_root = Utilities::MPI::this_mpi_process(communicator) == 0;
     io::run_collectively(communicator, [&]() {
       if (is_root)
-        scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
+        scene->groups = mesh::read_gmsh(scene->mesh_file, *scene->serial_mesh);
     });
     io::run_collectively(communicator, [&]() {
       if (!is_root)
-        scene->groups = mesh::read_gmsh(scene->mesh_file, scene->serial_mesh);
+        scene->groups = mesh::read_gmsh(scene->mesh_file, *scene->serial_mesh);
     });
 
     scene->model                 = std::make_unique<ClothModel>(communicator,
                                                 scene->parameters(),
                                                 parameter_file,
-                                                scene->serial_mesh,
+                                                *scene->serial_mesh,
                                                 scene->groups);
     const Parameters &parameters = scene->parameters();
     if (parameters.time.integrator == Integrator::linear_static ||

@@ -4,8 +4,6 @@
 // anything is written. Used by the clothsim executable and by tests that run scenes
 // in-process.
 
-#include <deal.II/base/parameter_handler.h>
-
 #include "io/parameters.h"
 #include "io/probe_location.h"
 #include "mesh/gmsh_reader.h"
@@ -17,15 +15,22 @@
 
 namespace clothsim
 {
+  // The parameter handler and the mesh as read are held by pointer: their headers
+  // (<deal.II/base/parameter_handler.h>, <deal.II/grid/tria.h>) are for the files that
+  // use them, not for every file that includes this one.
   struct Scene
   {
-    ParameterHandler    prm;
-    ParameterInput      input;
-    std::string         mesh_file; // resolved against the parameter file's directory
-    Triangulation<2, 3> serial_mesh;
-    mesh::MeshGroups    groups;
-    std::unique_ptr<ClothModel> model;
-    std::vector<ProbeLocation>  probes;
+    Scene();
+    ~Scene();
+
+    std::unique_ptr<ParameterHandler> prm;
+    ParameterInput                    input;
+    // The mesh file, resolved against the parameter file's directory.
+    std::string                          mesh_file;
+    std::unique_ptr<Triangulation<2, 3>> serial_mesh;
+    mesh::MeshGroups                     groups;
+    std::unique_ptr<ClothModel>          model;
+    std::vector<ProbeLocation>           probes;
 
     const Parameters &
     parameters() const
