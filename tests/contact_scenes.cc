@@ -162,13 +162,16 @@ namespace
                   centre_at(root / "fast obstacle", 0.1)[2] - top,
                   0.);
     // With Gauss-Newton's tangent the first step stalls on the pairs' step cap, and the
-    // run (allowed no halving) stops saying so.
+    // run (allowed no halving) stops saying so. (With the scene's mixed-stress tangent it
+    // also fails, after 60 iterations that end elsewhere: the projected membrane tangent
+    // shows the cap's stall alone.)
     const GuardedRun stalled =
       run_guarded(pcout,
                   source_path("params/contact/sheet-on-sphere.prm"),
                   join(fast,
                        {"Time/End time=0.0166666666666667",
                         "Contact/Edge contact tangent=gauss-newton",
+                        "Nonlinear solver/Mixed stress tangent=false",
                         "Nonlinear solver/Maximum iterations=60",
                         "Time/Maximum step halvings=0",
                         "Output/Progress=off"}),

@@ -330,12 +330,18 @@ namespace
   {
     GuardedRun result;
     // The apex starts 1 cm below the sheet, under a point off its vertices and lines.
+    // The sheet balanced on it is at a bifurcation: Newton solved to 1e-9 m with the
+    // projected membrane tangent keeps the centre vertex 0.8 mm above the apex at 0.2 s,
+    // with the scene's mixed-stress tangent 2.1 cm below (the sheet tips off; both
+    // stationary). The test asks the first, the branch it was written for.
     const Point<3> apex(0.512, 0.487, -0.01);
     bool           passed = run(pcout,
                       "sharp obstacle",
                       "params/contact/sheet-on-sphere.prm",
                       join(on_mesh(mesh, write_pyramid(apex, 0.03)),
-                           {"Obstacle 1/Translation=0; 0; 5*t", "Time/End time=0.2"}),
+                           {"Obstacle 1/Translation=0; 0; 5*t",
+                                      "Time/End time=0.2",
+                                      "Nonlinear solver/Mixed stress tangent=false"}),
                       result);
     if (!passed)
       return false;
