@@ -12,7 +12,7 @@ cd "$(dirname "$0")/.."
 # xvfb-run gives it a virtual display). ffmpeg: render.py's movie. gnuplot-nox: the plots
 # of --compare, --convergence and --sweep. Not libvtk9-dev: it depends on python3-vtk9,
 # which conflicts with python3-paraview (installing one removes the other).
-packages=(cmake g++ make libdeal.ii-dev trilinos-all-dev libopenmpi-dev openmpi-bin gmsh
+packages=(cmake g++ make lld libdeal.ii-dev trilinos-all-dev libopenmpi-dev openmpi-bin gmsh
           libgmsh-dev zlib1g-dev libmumps-dev libmetis-dev libopenblas0-serial paraview python3-paraview xvfb xauth
           ffmpeg gnuplot-nox)
 missing=()
