@@ -4,6 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# lld: LLVM's linker, which CMakeLists.txt uses instead of gold when present (an executable
+# links in 1.3 s against 3.0 s).
 # libmumps-dev: MUMPS' double- and single-precision libraries (solvers/mumps_factorization;
 # Trilinos depends on it too). libopenblas0-serial: an optimised BLAS for MUMPS' dense kernels (Debian's alternatives
 # pick it over the reference BLAS; factorisations twice as fast).
