@@ -80,4 +80,13 @@ namespace clothsim::io
           throw std::runtime_error(fields.at(0));
       }
   }
+
+
+  bool
+  on_all_ranks(const bool value, const MPI_Comm communicator)
+  {
+    int local = value ? 1 : 0, all = 0;
+    MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, communicator);
+    return all == 1;
+  }
 } // namespace clothsim::io

@@ -5,6 +5,7 @@
 // run_collectively runs an action on every rank and then agrees: if it threw on any rank,
 // every rank throws the error of the lowest such rank, with its type (InputError,
 // io::OutputError, std::bad_alloc; anything else as std::runtime_error) and message.
+// on_all_ranks agrees on a condition: true only where it holds on every rank.
 
 #include <mpi.h>
 
@@ -15,4 +16,8 @@ namespace clothsim::io
   // Collective over `communicator`: every rank must call it.
   void
   run_collectively(const MPI_Comm communicator, const std::function<void()> &action);
+
+  // Whether `value` holds on every rank (collective).
+  bool
+  on_all_ranks(const bool value, const MPI_Comm communicator);
 } // namespace clothsim::io

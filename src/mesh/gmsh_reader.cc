@@ -5,6 +5,7 @@
 #include "mesh/gmsh_reader.h"
 
 #include "io/input_error.h"
+#include "mesh/degenerate_triangle.h"
 #include "mesh/gmsh_reader_detail.h"
 
 #include <deal.II/base/exceptions.h>
@@ -32,13 +33,6 @@ namespace clothsim::mesh
       return a < b ? std::make_pair(a, b) : std::make_pair(b, a);
     }
   } // namespace detail
-
-
-  namespace
-  {
-    // A triangle is degenerate if area < degenerate_tolerance * (longest edge)^2.
-    constexpr double degenerate_tolerance = 1e-12;
-  } // namespace
 
 
   MeshGroups
@@ -116,19 +110,12 @@ namespace clothsim::mesh
                            "degenerate (zero-area) " + name +
                              ": it uses the same node twice");
 
-        const Point<3> &p0   = vertices[cells[c].vertices[0]];
-        const Point<3> &p1   = vertices[cells[c].vertices[1]];
-        const Point<3> &p2   = vertices[cells[c].vertices[2]];
-        const double    area = 0.5 * cross_product_3d(p1 - p0, p2 - p0).norm();
-        const double    longest_edge_square = std::max(
-          {(p1 - p0).norm_square(), (p2 - p1).norm_square(), (p0 - p2).norm_square()});
-        if (!(area > degenerate_tolerance * longest_edge_square))
-          {
-            std::ostringstream message;
-            message << "degenerate (zero-area) " << name << ": area " << area
-                    << " for a longest edge of " << std::sqrt(longest_edge_square);
-            throw InputError(msh_file, "", message.str());
-          }
+        if (const auto degenerate = degenerate_triangle(vertices[cells[c].vertices[0]],
+                                                        vertices[cells[c].vertices[1]],
+                                                        vertices[cells[c].vertices[2]]))
+          throw InputError(msh_file,
+                           "",
+                           "degenerate (zero-area) " + name + ": " + *degenerate);
 
         const auto [other, inserted] = cell_of_vertex_set.emplace(sorted, c);
         if (!inserted)

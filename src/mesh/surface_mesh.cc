@@ -7,6 +7,7 @@
 #include "io/input_error.h"
 #include "io/input_file.h"
 #include "mesh/child_process.h"
+#include "mesh/degenerate_triangle.h"
 #include "mesh/gmsh_session.h"
 #include "mesh/surface_mesh_detail.h"
 
@@ -31,11 +32,6 @@ namespace clothsim::mesh
 
   namespace
   {
-    // A triangle is degenerate if area <= degenerate_tolerance * (longest edge)^2 (as
-    // in mesh/gmsh_reader.cc).
-    constexpr double degenerate_tolerance = 1e-12;
-
-
     // ---------------------------------------------------------------------------------
     // gmsh
 
@@ -185,19 +181,12 @@ namespace clothsim::mesh
                              soup.name(t),
                              "zero-area (degenerate) triangle: two of its corners are "
                              "the same vertex");
-          const Point<3> &p0   = mesh.vertices[triangle[0]];
-          const Point<3> &p1   = mesh.vertices[triangle[1]];
-          const Point<3> &p2   = mesh.vertices[triangle[2]];
-          const double    area = 0.5 * cross_product_3d(p1 - p0, p2 - p0).norm();
-          const double    longest_edge_square = std::max(
-            {(p1 - p0).norm_square(), (p2 - p1).norm_square(), (p0 - p2).norm_square()});
-          if (!(area > degenerate_tolerance * longest_edge_square))
-            {
-              std::ostringstream message;
-              message << "zero-area (degenerate) triangle: area " << area
-                      << " for a longest edge of " << std::sqrt(longest_edge_square);
-              throw InputError(file, soup.name(t), message.str());
-            }
+          if (const auto degenerate = degenerate_triangle(mesh.vertices[triangle[0]],
+                                                          mesh.vertices[triangle[1]],
+                                                          mesh.vertices[triangle[2]]))
+            throw InputError(file,
+                             soup.name(t),
+                             "zero-area (degenerate) triangle: " + *degenerate);
         }
 
       mesh.edges.reserve(3 * mesh.triangles.size());

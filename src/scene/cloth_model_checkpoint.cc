@@ -5,6 +5,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include "io/collective.h"
 #include "io/input_error.h"
 #include "scene/cloth_model.h"
 
@@ -74,9 +75,7 @@ namespace clothsim
     const std::vector<double>  expected = fingerprint();
     const std::vector<double> &saved    = rank.get("model fingerprint", expected.size());
     // Any rank's mismatch stops all of them.
-    const bool same =
-      Utilities::MPI::min(saved == expected ? 1 : 0, get_communicator()) == 1;
-    if (!same)
+    if (!io::on_all_ranks(saved == expected, get_communicator()))
       {
         std::ostringstream message;
         message << "the checkpoint was written for another mesh or partition ("

@@ -1,5 +1,6 @@
 #include "solvers/mumps_factorization.h"
 
+#include "io/collective.h"
 #include "solvers/fill_reducing_order.h"
 #include "solvers/subdomain_cholesky.h"
 #include "solvers/supernodal_cholesky.h"
@@ -51,15 +52,6 @@ namespace clothsim
 
   namespace
   {
-    // Whether `value` holds on every rank (collective).
-    bool
-    on_all_ranks(const bool value, const MPI_Comm communicator)
-    {
-      int local = value ? 1 : 0, all = 0;
-      MPI_Allreduce(&local, &all, 1, MPI_INT, MPI_MIN, communicator);
-      return all == 1;
-    }
-
     // MUMPS' arrays are 1-based in its documentation: ICNTL(k) is icntl[k - 1].
     constexpr int
     at(const int k)
@@ -231,7 +223,7 @@ namespace clothsim
     for (int i = 0; i < n_local; ++i)
       rhs_rows[i] = kept_indices[i] + 1;
     rhs_values.resize(n_local);
-    if (!on_all_ranks(symmetric, communicator))
+    if (!io::on_all_ranks(symmetric, communicator))
       {
         last_failure = "the matrix's sparsity is not symmetric (MUMPS needs it)";
         return false;
@@ -478,7 +470,7 @@ namespace clothsim
     bool      same    = from_solution != nullptr &&
                 static_cast<int>(mapped_rows.size()) == n_local &&
                 std::equal(mapped_rows.begin(), mapped_rows.end(), solution_rows.begin());
-    if (!on_all_ranks(same, communicator))
+    if (!io::on_all_ranks(same, communicator))
       {
         mapped_rows.assign(solution_rows.begin(), solution_rows.begin() + n_local);
         std::vector<int> global(n_local);

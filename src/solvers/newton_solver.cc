@@ -25,9 +25,6 @@ namespace clothsim
 {
   namespace
   {
-    // A residual this many times the initial one has diverged.
-    constexpr double divergence_factor = 1e10;
-
     using TrilinosVector = TrilinosWrappers::MPI::Vector;
 
     void

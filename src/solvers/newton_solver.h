@@ -75,6 +75,10 @@ namespace clothsim
     }
   };
 
+  // A residual this many times the first iterate's (or the absolute tolerance, if
+  // larger) has diverged: Newton and the arc-length corrector stop there.
+  inline constexpr double divergence_factor = 1e10;
+
   struct NewtonResult
   {
     bool         converged         = false;

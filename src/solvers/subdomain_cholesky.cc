@@ -2,6 +2,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include "io/collective.h"
 #include "solvers/dense_kernels.h"
 #include "solvers/fill_reducing_order.h"
 
@@ -14,13 +15,6 @@ namespace clothsim
 {
   namespace
   {
-    // Whether `value` holds on every rank (collective).
-    bool
-    on_all_ranks(const bool value, const MPI_Comm communicator)
-    {
-      return dealii::Utilities::MPI::min(value ? 1 : 0, communicator) == 1;
-    }
-
     // data = the sum of every rank's data, the same on every rank: summed on rank 0 and
     // broadcast (MPI_Allreduce may add in another order on each rank, and ranks whose
     // separator factors differ in their last bits would disagree on x_S).
@@ -54,9 +48,9 @@ namespace clothsim
     MPI_Comm_rank(communicator, &rank);
     int    *offsets = nullptr, *columns = nullptr;
     double *values = nullptr;
-    if (!on_all_ranks(matrix.StorageOptimized() &&
-                        matrix.ExtractCrsDataPointers(offsets, columns, values) == 0,
-                      communicator))
+    if (!io::on_all_ranks(matrix.StorageOptimized() &&
+                            matrix.ExtractCrsDataPointers(offsets, columns, values) == 0,
+                          communicator))
       {
         last_failure = "the matrix's storage is not optimised (FillComplete)";
         return false;
@@ -145,7 +139,7 @@ namespace clothsim
           add(n_interior + separator_index[i],
               n_interior + column_in_separator[columns[k]],
               k);
-    if (!on_all_ranks(symmetric, communicator))
+    if (!io::on_all_ranks(symmetric, communicator))
       {
         last_failure = "the matrix's sparsity is not symmetric";
         return false;
@@ -154,7 +148,7 @@ namespace clothsim
     // The interior in a fill-reducing order, the separator last.
     const auto interior_order =
       nested_dissection_order(n_interior, interior_pattern[0], interior_pattern[1]);
-    if (!on_all_ranks(interior_order.has_value(), communicator))
+    if (!io::on_all_ranks(interior_order.has_value(), communicator))
       {
         last_failure = "METIS' nested dissection of a rank's interior failed";
         return false;
@@ -190,7 +184,7 @@ namespace clothsim
         decoupled_diagonal[i] = values[decoupled_offsets[i]];
         definite              = definite && decoupled_diagonal[i] > 0.;
       }
-    definite = on_all_ranks(definite && cholesky.factorize(values), communicator);
+    definite = io::on_all_ranks(definite && cholesky.factorize(values), communicator);
     if (definite && n_separator > 0)
       {
         std::fill(schur.begin(), schur.end(), 0.);

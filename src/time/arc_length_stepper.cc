@@ -1,6 +1,7 @@
 #include "time/arc_length_stepper.h"
 
 #include "io/progress.h"
+#include "solvers/newton_solver.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +16,6 @@ namespace clothsim
     // Corrector iterations per step that 'Adaptive load steps' aims for (Crisfield
     // 1991, §9.5.1: Δs_new = Δs (I_d / I)^½).
     constexpr double desired_iterations = 5.;
-    // A residual this many times the first iterate's is divergence, as in Newton.
-    constexpr double divergence_factor = 1e10;
   } // namespace
 
 

@@ -1,5 +1,7 @@
 #include "time/step_problem.h"
 
+#include "io/collective.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -16,13 +18,12 @@ namespace clothsim
     bool
     bitwise_equal(const VectorType &a, const VectorType &b, const MPI_Comm communicator)
     {
-      const auto   x = a.begin(), y = b.begin();
-      const auto   n    = a.locally_owned_size();
-      const double same = a.locally_owned_size() == b.locally_owned_size() &&
-                              std::memcmp(x, y, n * sizeof(*x)) == 0
-                            ? 1.
-                            : 0.;
-      return Utilities::MPI::min(same, communicator) == 1.;
+      const auto n = a.locally_owned_size();
+      return io::on_all_ranks(n == b.locally_owned_size() &&
+                                std::memcmp(a.begin(),
+                                            b.begin(),
+                                            n * sizeof(*a.begin())) == 0,
+                              communicator);
     }
   } // namespace
 
