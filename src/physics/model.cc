@@ -1,5 +1,6 @@
 #include "physics/model.h"
 
+#include "io/wall_clock.h"
 #include "mesh/ghosted_values.h"
 
 #include <deal.II/base/mpi.h>
@@ -7,7 +8,6 @@
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -15,16 +15,11 @@ namespace clothsim::physics
 {
   namespace
   {
-    using Clock = std::chrono::steady_clock;
+    using Clock = io::WallClock;
+    using io::seconds_since;
 
     // Every how many triangles the element terms are timed.
     constexpr unsigned int timing_stride = 64;
-
-    double
-    seconds_since(const Clock::time_point start)
-    {
-      return std::chrono::duration<double>(Clock::now() - start).count();
-    }
 
     // The cost of timing nothing (two clock reads), s, subtracted from each sample.
     double

@@ -3,12 +3,12 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include "io/wall_clock.h"
 #include "mesh/ghosted_values.h"
 #include "physics/contact_potential.h"
 #include "physics/pair_barrier.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -17,13 +17,8 @@ namespace clothsim::physics
 {
   namespace
   {
-    using Clock = std::chrono::steady_clock;
-
-    double
-    seconds_since(const Clock::time_point start)
-    {
-      return std::chrono::duration<double>(Clock::now() - start).count();
-    }
+    using Clock = io::WallClock;
+    using io::seconds_since;
 
     // Adds the wall time of its scope to one of SelfContact's phases, less what the scope
     // spent gathering and in the broad phase (those count in their own).
