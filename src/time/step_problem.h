@@ -62,6 +62,14 @@ namespace clothsim
     double
     update_size(const VectorType &update) const override;
 
+    // The model changed under the same unknowns (friction lagged again at the solution):
+    // Φ and its gradient are assembled anew, at the last point too.
+    void
+    forget_cached_values()
+    {
+      cached = false;
+    }
+
     // Newton's second step test: ratio(update, u), the update over what the step
     // tolerates at the iterate u.
     void

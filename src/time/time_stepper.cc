@@ -203,6 +203,7 @@ namespace clothsim
         model.import_ghosts(u_new, check_ghosted);
         if (model.relag_friction(check_ghosted) < 1e-3)
           break;
+        problem.forget_cached_values();
         newton.invalidate_tangent();
         const NewtonResult again = newton.solve(problem, u_new, newton_floor);
         attempt.newton.iterations += again.iterations;
