@@ -1,7 +1,5 @@
 #include "io/progress.h"
 
-#include "io/wall_clock.h"
-
 #include <unistd.h>
 
 #include <cstdio>
@@ -39,7 +37,8 @@ namespace clothsim
     constexpr double round_off = 1e-9; // t/T of a step at 5 % may fall just short
     if (!terminal && fraction + round_off < next_line_fraction && fraction < 1.)
       return;
-    const double       elapsed = io::seconds_since(start);
+    const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double       eta = fraction > 0. ? elapsed * (1. - fraction) / fraction : 0.;
     std::ostringstream line;
     line << std::fixed << std::setprecision(1) << std::setw(5) << 100. * fraction << "%  "

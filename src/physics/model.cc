@@ -1,7 +1,7 @@
 #include "physics/model.h"
 
-#include "io/wall_clock.h"
 #include "mesh/ghosted_values.h"
+#include "physics/wall_clock.h"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/full_matrix.h>
@@ -15,8 +15,7 @@ namespace clothsim::physics
 {
   namespace
   {
-    using Clock = io::WallClock;
-    using io::seconds_since;
+    using Clock = WallClock;
 
     // Every how many triangles the element terms are timed.
     constexpr unsigned int timing_stride = 64;

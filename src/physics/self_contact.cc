@@ -3,10 +3,10 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
-#include "io/wall_clock.h"
 #include "mesh/ghosted_values.h"
 #include "physics/contact_potential.h"
 #include "physics/pair_barrier.h"
+#include "physics/wall_clock.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,8 +17,7 @@ namespace clothsim::physics
 {
   namespace
   {
-    using Clock = io::WallClock;
-    using io::seconds_since;
+    using Clock = WallClock;
 
     // Adds the wall time of its scope to one of SelfContact's phases, less what the scope
     // spent gathering and in the broad phase (those count in their own).

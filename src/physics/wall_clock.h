@@ -1,11 +1,11 @@
 #pragma once
 
 // Wall-clock seconds for the timings that TimerOutput does not take: the assembly's
-// estimate per term (physics/model.cc), self-contact's phases and the progress line.
+// estimate per term (physics/model.cc) and self-contact's phases.
 
 #include <chrono>
 
-namespace clothsim::io
+namespace clothsim::physics
 {
   using WallClock = std::chrono::steady_clock;
 
@@ -15,4 +15,4 @@ namespace clothsim::io
   {
     return std::chrono::duration<double>(WallClock::now() - start).count();
   }
-} // namespace clothsim::io
+} // namespace clothsim::physics
