@@ -5,7 +5,7 @@
 // run_collectively runs an action on every rank and then agrees: if it threw on any rank,
 // every rank throws the error of the lowest such rank, with its type (InputError,
 // io::OutputError, std::bad_alloc; anything else as std::runtime_error) and message.
-// on_all_ranks agrees on a condition: true only where it holds on every rank.
+// on_all_ranks agrees on a condition: true on every rank if it holds on every rank.
 
 #include <mpi.h>
 
