@@ -1,9 +1,11 @@
-// compare_probes A.csv B.csv RELATIVE ABSOLUTE
+// compare_probes A.csv B.csv RELATIVE ABSOLUTE [UNTIL]
 // Compares two probes.csv files row by row (same steps, times and probes; times to
 // RELATIVE, since an arc-length path's load factors are computed) and their
 // positions and displacements, or two reactions.csv files (same steps, times and
 // groups) and their centres, forces and moments: every number after the probe or group
-// column, |a - b| <= max(ABSOLUTE, RELATIVE * max(|a|, |b|)). Prints the worst
+// column, |a - b| <= max(ABSOLUTE, RELATIVE * max(|a|, |b|)). With UNTIL (s), only the
+// rows up to that time, in both files: for a motion that amplifies round-off (a fold),
+// whose later rows depend on the last bits of the BLAS' kernels. Prints the worst
 // deviation.
 
 #include "csv.h"
@@ -16,14 +18,28 @@
 int
 main(int argc, char **argv)
 {
-  if (argc != 5)
+  if (argc != 5 && argc != 6)
     {
-      std::cerr << "usage: compare_probes A.csv B.csv RELATIVE ABSOLUTE\n";
+      std::cerr << "usage: compare_probes A.csv B.csv RELATIVE ABSOLUTE [UNTIL]\n";
       return 2;
     }
   using namespace clothsim::test;
-  const Csv    a = read_csv(argv[1]), b = read_csv(argv[2]);
+  Csv          a = read_csv(argv[1]), b = read_csv(argv[2]);
   const double relative = std::stod(argv[3]), absolute = std::stod(argv[4]);
+  if (argc == 6)
+    {
+      const double until = std::stod(argv[5]);
+      for (Csv *csv : {&a, &b})
+        {
+          const unsigned int time = csv->column("time");
+          csv->rows.erase(std::remove_if(csv->rows.begin(),
+                                         csv->rows.end(),
+                                         [&](const std::vector<std::string> &row) {
+                                           return std::stod(row.at(time)) > until;
+                                         }),
+                          csv->rows.end());
+        }
+    }
   if (a.header != b.header || a.rows.size() != b.rows.size() || a.rows.empty())
     {
       std::cout << "FAILED: different headers or row counts (" << a.rows.size() << " vs "
