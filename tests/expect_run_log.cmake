@@ -1,6 +1,8 @@
 # Runs clothsim on a short scene with its standard output going to a pipe (as to a log
 # file) and checks what the log must hold (README, "Running"):
-#   - the provenance header: version and git revision, library versions, ranks, command;
+#   - the provenance header: version and git revision, library versions (the BLAS with
+#     its kernels: never OpenBLAS' SSE3 'Prescott' fallback on a CPU with AVX2 and FMA,
+#     solvers/blas_kernels.h), ranks, command;
 #   - progress as plain lines every 5 % of the run (20 of them), never a carriage return;
 #   - the closing summary: each probe's final displacement, the energy budget, the path of
 #     solution.pvd;
@@ -30,6 +32,14 @@ endif()
 expect("^clothsim [0-9]+\\.[0-9]+\\.[0-9]+ \\(git [^)]+\\)\n" "the version line first")
 expect("\ndeal\\.II 9\\.[0-9.]+, Trilinos [0-9.]+, MUMPS [0-9.]+, gmsh [0-9.]+, [^\n]*MPI"
        "the libraries' versions")
+expect("\ndeal\\.II [^\n]*, (OpenBLAS [0-9.]+ \\([A-Za-z0-9]+ kernels[^\n]*\\)|BLAS: not OpenBLAS)\n"
+       "the BLAS and its kernels")
+file(READ /proc/cpuinfo cpu_info)
+if(cpu_info MATCHES "\nflags[^\n]* avx2 [^\n]*" AND CMAKE_MATCH_0 MATCHES " fma ")
+  if(out MATCHES "OpenBLAS [0-9.]+ \\(Prescott kernels")
+    message(FATAL_ERROR "OpenBLAS runs its SSE3 'Prescott' kernels on a CPU with AVX2 and FMA")
+  endif()
+endif()
 expect("\nrun started 20[0-9][0-9]-[0-9][0-9]-[0-9][0-9] [0-9:]+ UTC on ${n_ranks} MPI rank"
        "the date and rank count")
 expect("\ncommand: [^\n]*clothsim [^\n]*--output-dir" "the command line")

@@ -18,6 +18,7 @@
 #include "io/parameters.h"
 #include "io/provenance.h"
 #include "scene/scene.h"
+#include "solvers/blas_kernels.h"
 #include "time/explicit_stepper.h"
 #include "time/interruption.h"
 #include "time/time_stepper.h"
@@ -157,6 +158,7 @@ namespace clothsim
     ConditionalOStream pcout(std::cout, is_root);
 
     io::record_invocation(argc, argv);
+    io::record_blas(blas_description(select_blas_kernels()));
     install_interruption_handlers(is_root);
     // A file-size limit (ulimit -f) then fails the write with EFBIG, reported like a full
     // disk, instead of killing the process with SIGXFSZ.

@@ -15,6 +15,7 @@ namespace clothsim::io
   {
     std::string invocation = "(not recorded)";
     std::string start_date = "(not recorded)";
+    std::string blas       = "BLAS (not recorded)";
 
     // An argument as a shell would need it: quoted when it holds anything but plain
     // characters.
@@ -48,6 +49,13 @@ namespace clothsim::io
   }
 
 
+  void
+  record_blas(const std::string &description)
+  {
+    blas = description;
+  }
+
+
   std::string
   version_line()
   {
@@ -67,7 +75,7 @@ namespace clothsim::io
     mpi = mpi.substr(0, mpi.find_first_of(",\n"));
     return std::string("deal.II ") + DEAL_II_PACKAGE_VERSION + ", Trilinos " +
            TRILINOS_VERSION_STRING + ", MUMPS " + MUMPS_VERSION + ", gmsh " +
-           GMSH_API_VERSION + ", " + mpi;
+           GMSH_API_VERSION + ", " + mpi + ", " + blas;
   }
 
 

@@ -17,12 +17,18 @@ namespace clothsim::io
   void
   record_invocation(const int argc, const char *const *argv);
 
+  // Keeps the BLAS' name, version and kernels (solvers/blas_kernels) for
+  // libraries_line(); call once at start-up, after choosing the kernels.
+  void
+  record_blas(const std::string &description);
+
   // "clothsim 0.18.0 (git 1a2b3c4d5e6f)"; "-dirty" after the revision when the build had
   // uncommitted changes.
   std::string
   version_line();
 
-  // The versions of deal.II, Trilinos, MUMPS, gmsh and the MPI library, on one line.
+  // The versions of deal.II, Trilinos, MUMPS, gmsh, the MPI library and the BLAS (with
+  // its kernels), on one line.
   std::string
   libraries_line();
 
