@@ -7,7 +7,8 @@
 // when it loads. A model newer than the library (Intel's Emerald Rapids, family 6 model
 // 207, for OpenBLAS 0.3.21) falls back to its 'Prescott' kernels: SSE3, a quarter of the
 // vector width of the AVX-512 ones the same CPU runs. On such a CPU the swinging sheet's
-// factorisations took 1.4 times as long (30.3 against 21.8 ms each at N = 81).
+// factorisations took 1.3 times as long at N = 81 (27.6 against 20.9 ms each) and 4 times
+// at N = 321 (README, "OpenBLAS' kernels").
 
 #include <string>
 
