@@ -28,6 +28,7 @@
 #                   after the first, which holds one-time work (the direct solver's
 #                   analysis: about 3 s at N = 321) that a long run amortises
 #   status          ok, or FAILED with the time the run reached
+# After the table, a line names the libraries and the BLAS' kernels (clothsim --version).
 # With more than one rank, a line after the table says how fast the CPUs the ranks run on
 # are: the same one-rank run (N = 161, fem, 0.1 s) pinned to each of CPUs 0 .. R-1 (R the
 # most ranks; mpirun binds rank r to core r), before and after the runs, and the speedup
@@ -307,6 +308,8 @@ for n in $sizes; do
   done
 done
 print_table
+# The libraries, with the BLAS' kernels: the factorisation's speed depends on them.
+echo "libraries: $("$clothsim" --version | tail -n 1)"
 if [ -n "$cpu_before" ]; then
   printf 'CPU check again ... ' >&2
   cpu_after=$(cpu_times) || die "CPU check failed"
