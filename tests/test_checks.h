@@ -20,6 +20,7 @@
 
 #include "app/mpi_session.h"
 #include "csv.h"
+#include "solvers/blas_kernels.h"
 
 #include <algorithm>
 #include <array>
@@ -58,15 +59,19 @@ namespace clothsim::test
     return (std::filesystem::temp_directory_path() / name).string();
   }
 
-  // A test program's MPI set-up: MPI (one thread per process), MPI_COMM_WORLD, and an
-  // output stream that prints on rank 0.
+  // A test program's set-up: MPI (one thread per process), MPI_COMM_WORLD, an output
+  // stream that prints on rank 0, and the BLAS' kernels chosen as the clothsim executable
+  // chooses them (solvers/blas_kernels.h), so that scenes run in the test program
+  // compute what they compute there.
   struct Environment
   {
     Environment(int &argc, char **&argv)
       : mpi(argc, argv)
       , communicator(MPI_COMM_WORLD)
       , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    {}
+    {
+      clothsim::select_blas_kernels();
+    }
 
     clothsim::MpiSession mpi;
     const MPI_Comm       communicator;
