@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace clothsim::physics
@@ -198,10 +199,11 @@ namespace clothsim::physics
       predictor,
       previous,
       [&](const ElementState &state) {
-        g.fill(0.);
+        // One memset each: zeroing H row by row took 12 short `rep stos` per element
+        // (GCC's choice for 96 bytes), 3 % of the swinging sheet's run time.
+        std::memset(g.data(), 0, sizeof(g));
         if (hessian != nullptr)
-          for (auto &row : H)
-            row.fill(0.);
+          std::memset(H.data(), 0, sizeof(H));
         const auto &element = elements[state.index];
         const bool  timed   = state.index % timing_stride == 0;
         for (unsigned int k = 0; k < element_terms.size(); ++k)
