@@ -20,6 +20,7 @@
 #include <deal.II/base/mpi.h>
 
 #include "app/mpi_session.h"
+#include "solvers/blas_kernels.h"
 #include "solvers/mumps_factorization.h"
 
 #include <Epetra_MpiComm.h>
@@ -171,10 +172,11 @@ int
 main(int argc, char **argv)
 {
   clothsim::MpiSession mpi(argc, argv);
-  const int            rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-  Epetra_MpiComm       comm(MPI_COMM_WORLD);
-  const int            n = 1000;
-  Epetra_Map           map(n, 0, comm);
+  clothsim::select_blas_kernels(); // as the clothsim executable does
+  const int      rank = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+  Epetra_MpiComm comm(MPI_COMM_WORLD);
+  const int      n = 1000;
+  Epetra_Map     map(n, 0, comm);
 
   {
     // Indefinite: a = 0.3, b = 1 has eigenvalues on both sides of zero.

@@ -37,6 +37,7 @@
 #include "physics/self_contact.h"
 #include "app/mpi_session.h"
 #include "contact_checks.h"
+#include "solvers/blas_kernels.h"
 
 using namespace clothsim;
 using namespace clothsim::test;
@@ -341,9 +342,10 @@ int
 main(int argc, char **argv)
 {
   clothsim::MpiSession mpi(argc, argv);
-  ConditionalOStream   pcout(std::cout,
+  clothsim::select_blas_kernels(); // as the clothsim executable does
+  ConditionalOStream pcout(std::cout,
                            Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
-  bool                 passed = true;
+  bool               passed = true;
   if (argc > 1 && std::string(argv[1]) == "twisted-tube")
     passed &= check_twisted_tube(pcout);
   else if (argc > 1 && std::string(argv[1]) == "sheet-folds")
