@@ -1,6 +1,7 @@
 #include "solvers/supernodal_cholesky.h"
 
 #include "solvers/dense_kernels.h"
+#include "solvers/panel_cholesky.h"
 
 #include <algorithm>
 #include <numeric>
@@ -78,6 +79,13 @@ namespace clothsim
              (columns <= 48 && zero_fraction < 0.1) || zero_fraction < 0.05;
     }
   } // namespace
+
+
+  SupernodalCholesky::SupernodalCholesky(const bool single_precision,
+                                         const bool blas_panels)
+    : single(single_precision)
+    , written_out_panels(!blas_panels && dense::panel_kernel_available())
+  {}
 
 
   void
@@ -462,11 +470,20 @@ namespace clothsim
           }
         if (n_schur > 0 && s + 1 == n_nodes)
           break; // the Schur complement, left to the caller
-        if (!dense::cholesky(k, P, m))
-          return false;
+        if (written_out_panels && k <= written_out_panel_columns)
+          {
+            if (!dense::panel_cholesky(k, m, P))
+              return false;
+          }
+        else
+          {
+            if (!dense::cholesky(k, P, m))
+              return false;
+            if (r > 0)
+              dense::right_solve_transposed(r, k, P, m, P + k, m);
+          }
         if (r > 0)
           {
-            dense::right_solve_transposed(r, k, P, m, P + k, m);
             dense::subtract_gram(r, k, P + k, m, U, r);
             top[side] += static_cast<std::int64_t>(r) * r;
           }

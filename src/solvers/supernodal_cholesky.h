@@ -20,10 +20,13 @@ namespace clothsim
   class SupernodalCholesky
   {
   public:
-    // The factors' precision (the matrix is given in double either way).
-    explicit SupernodalCholesky(bool single_precision = true)
-      : single(single_precision)
-    {}
+    // The factors' precision (the matrix is given in double either way). Panels of at
+    // most `written_out_panel_columns` columns are factorised by dense::panel_cholesky
+    // where this CPU runs it, unless `blas_panels` (LAPACK's potrf and BLAS' trsm, as
+    // larger panels and CPUs without AVX2 always are; tests compare the two).
+    explicit SupernodalCholesky(bool single_precision = true, bool blas_panels = false);
+
+    static constexpr int written_out_panel_columns = 96;
 
     // The pattern of the upper triangle (0-based, rows[k] <= columns[k], each entry
     // once), and the elimination order: order[p] is the row eliminated p-th (a
@@ -72,6 +75,13 @@ namespace clothsim
     {
       return n_factor_entries;
     }
+    // Whether panels of at most written_out_panel_columns are factorised by
+    // dense::panel_cholesky.
+    bool
+    writes_out_panels() const
+    {
+      return written_out_panels;
+    }
     int
     n_supernodes() const
     {
@@ -116,6 +126,7 @@ namespace clothsim
     solve(Numeric<Number> &numeric, double *x, const std::function<void(double *)> &);
 
     bool              single;
+    bool              written_out_panels;
     Numeric<float>    in_single;
     Numeric<double>   in_double;
     double            n_operations     = 0.;

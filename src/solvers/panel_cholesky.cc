@@ -1,0 +1,124 @@
+#include "solvers/panel_cholesky.h"
+
+#include <cmath>
+
+namespace clothsim::dense
+{
+  bool
+  panel_kernel_available()
+  {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  }
+} // namespace clothsim::dense
+
+
+// Everything below is compiled for AVX2 and FMA, and runs only where
+// panel_kernel_available() said so.
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+
+namespace clothsim::dense
+{
+  namespace
+  {
+    // y[0 .. len) -= A x: A len x q (column-major, leading dimension lda), x[p] =
+    // x_first[p * x_stride] (a row of the panel). Rows in blocks of four 256-bit
+    // vectors held in registers over the whole sum, so that each entry of A is loaded
+    // once and each of y once (GCC's vector extension; `a - s * b` contracts to FMA).
+    template <typename Number>
+    inline void
+    subtract_row_product(const int     len,
+                         const int     q,
+                         const Number *A,
+                         const int     lda,
+                         const Number *x_first,
+                         const int     x_stride,
+                         Number       *y)
+    {
+      // Any alignment: the panel's columns start where they start.
+      typedef Number Vector __attribute__((vector_size(32), aligned(sizeof(Number))));
+      constexpr int  width = 32 / sizeof(Number);
+      const auto     at    = [](const Number *p) {
+        return *reinterpret_cast<const Vector *>(p);
+      };
+      // Rows [len - width, len) first, into a register, from y as given: stored last,
+      // they overwrite the rows that the blocks below computed twice with the same
+      // value, and no row is left to a scalar loop (for len >= width).
+      const bool overhang = len > width && len % width != 0;
+      Vector     last;
+      if (overhang)
+        {
+          last = at(y + len - width);
+          for (int p = 0; p < q; ++p)
+            last -=
+              x_first[p * x_stride] * at(A + static_cast<long>(p) * lda + len - width);
+        }
+      int i = 0;
+      for (; i + 4 * width <= len; i += 4 * width)
+        {
+          Vector y0 = at(y + i), y1 = at(y + i + width), y2 = at(y + i + 2 * width),
+                 y3 = at(y + i + 3 * width);
+          for (int p = 0; p < q; ++p)
+            {
+              const Number  s = x_first[p * x_stride];
+              const Number *a = A + static_cast<long>(p) * lda + i;
+              y0 -= s * at(a);
+              y1 -= s * at(a + width);
+              y2 -= s * at(a + 2 * width);
+              y3 -= s * at(a + 3 * width);
+            }
+          *reinterpret_cast<Vector *>(y + i)             = y0;
+          *reinterpret_cast<Vector *>(y + i + width)     = y1;
+          *reinterpret_cast<Vector *>(y + i + 2 * width) = y2;
+          *reinterpret_cast<Vector *>(y + i + 3 * width) = y3;
+        }
+      for (; i + width <= len; i += width)
+        {
+          Vector y0 = at(y + i);
+          for (int p = 0; p < q; ++p)
+            y0 -= x_first[p * x_stride] * at(A + static_cast<long>(p) * lda + i);
+          *reinterpret_cast<Vector *>(y + i) = y0;
+        }
+      if (overhang)
+        *reinterpret_cast<Vector *>(y + len - width) = last;
+      else
+        for (; i < len; ++i)
+          {
+            Number sum = y[i];
+            for (int p = 0; p < q; ++p)
+              sum -= x_first[p * x_stride] * A[static_cast<long>(p) * lda + i];
+            y[i] = sum;
+          }
+    }
+  } // namespace
+
+
+  template <typename Number>
+  bool
+  panel_cholesky(const int k, const int m, Number *P)
+  {
+    // Column j, rows j .. m - 1: a_j - [L]_{j.., 0..j-1} [L]_{j, 0..j-1}ᵀ, then divided
+    // by the root of its diagonal entry (left-looking Cholesky; Golub & Van Loan,
+    // Matrix Computations, 4th ed., algorithm 4.2.1, over the panel's rows).
+    for (int j = 0; j < k; ++j)
+      {
+        Number *column = P + static_cast<long>(j) * m + j;
+        subtract_row_product(m - j, j, P + j, m, P + j, m, column);
+        if (!(column[0] > 0))
+          return false;
+        const Number root = std::sqrt(column[0]), inverse = Number(1) / root;
+        column[0] = root;
+        for (int i = 1; i < m - j; ++i)
+          column[i] *= inverse;
+      }
+    return true;
+  }
+
+  template bool
+  panel_cholesky(int, int, float *);
+  template bool
+  panel_cholesky(int, int, double *);
+} // namespace clothsim::dense
+
+#pragma GCC pop_options

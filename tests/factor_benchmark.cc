@@ -1,0 +1,139 @@
+// Benchmark (not a ctest test: it asserts nothing and prints timings): one factorisation
+// by the supernodal Cholesky (solvers/supernodal_cholesky.h) with its written-out panels
+// (solvers/panel_cholesky.h) against the same with LAPACK's potrf and BLAS' trsm, in
+// single precision, on the pattern of the swinging sheet's tangent: an N x N-vertex
+// square with alternating diagonals, each triangle coupling its three vertices' three
+// displacements and its three edges' unknowns (a 12 x 12 element matrix), ordered by
+// METIS' nested dissection. The values are a diagonally dominant symmetric matrix (the
+// cost does not depend on them). The two are timed in alternating passes and each one's
+// fastest pass is reported with their ratio, measured in this one run.
+//
+//   build/tests/factor_benchmark [N, default 81] [passes, default 40]
+
+#include "solvers/blas_kernels.h"
+#include "solvers/fill_reducing_order.h"
+#include "solvers/supernodal_cholesky.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <random>
+#include <utility>
+#include <vector>
+
+using namespace clothsim;
+
+int
+main(int argc, char **argv)
+{
+  const int N      = argc > 1 ? std::atoi(argv[1]) : 81;
+  const int passes = argc > 2 ? std::atoi(argv[2]) : 40;
+  if (N < 3 || passes < 1)
+    {
+      std::cerr << "usage: factor_benchmark [N >= 3] [passes >= 1]\n";
+      return 2;
+    }
+  select_blas_kernels();
+
+  // Unknowns: 3 per vertex, then 1 per edge (numbered as met).
+  const auto                         vertex = [N](int i, int j) { return i + N * j; };
+  std::map<std::pair<int, int>, int> edges;
+  const int                          n_vertex_unknowns = 3 * N * N;
+  const auto                         edge              = [&](int a, int b) {
+    const auto key = std::minmax(a, b);
+    const auto it =
+      edges.emplace(key, n_vertex_unknowns + static_cast<int>(edges.size()));
+    return it.first->second;
+  };
+  std::vector<std::array<int, 12>> elements;
+  for (int j = 0; j + 1 < N; ++j)
+    for (int i = 0; i + 1 < N; ++i)
+      {
+        const int v00 = vertex(i, j), v10 = vertex(i + 1, j), v01 = vertex(i, j + 1),
+                  v11 = vertex(i + 1, j + 1);
+        // Alternating diagonals, as meshes/swing-N.geo.
+        const bool               diagonal_up = (i + j) % 2 == 0;
+        const std::array<int, 3> first       = {{v00, v10, diagonal_up ? v11 : v01}},
+                                 second      = {{diagonal_up ? v00 : v10, v11, v01}};
+        for (const auto &t : {first, second})
+          {
+            std::array<int, 12> dofs;
+            for (int a = 0; a < 3; ++a)
+              for (int d = 0; d < 3; ++d)
+                dofs[3 * a + d] = 3 * t[a] + d;
+            for (int a = 0; a < 3; ++a)
+              dofs[9 + a] = edge(t[(a + 1) % 3], t[(a + 2) % 3]);
+            elements.push_back(dofs);
+          }
+      }
+  const int n = n_vertex_unknowns + static_cast<int>(edges.size());
+
+  // The upper triangle: off-diagonal entries in [-1, 0), each diagonal entry 1 more than
+  // the absolute sum of its row (strictly diagonally dominant, so SPD).
+  std::map<std::pair<int, int>, double>  upper;
+  std::mt19937                           random(2026);
+  std::uniform_real_distribution<double> entry(-1., 0.);
+  for (const auto &dofs : elements)
+    for (int a = 0; a < 12; ++a)
+      for (int b = a + 1; b < 12; ++b)
+        upper[std::minmax(dofs[a], dofs[b])] += entry(random);
+  std::vector<double> diagonal(n, 1.);
+  for (const auto &[key, value] : upper)
+    {
+      diagonal[key.first] -= value;
+      diagonal[key.second] -= value;
+    }
+  std::vector<int>    rows, columns;
+  std::vector<double> values;
+  for (int i = 0; i < n; ++i)
+    upper[{i, i}] = diagonal[i];
+  for (const auto &[key, value] : upper)
+    {
+      rows.push_back(key.first);
+      columns.push_back(key.second);
+      values.push_back(value);
+    }
+
+  const auto order = nested_dissection_order(n, rows, columns);
+  if (!order)
+    {
+      std::cerr << "factor_benchmark: METIS failed\n";
+      return 1;
+    }
+  SupernodalCholesky written_out(true), blas(true, /*blas_panels=*/true);
+  written_out.analyse(n, rows, columns, *order);
+  blas.analyse(n, rows, columns, *order);
+  std::cout << "N = " << N << ": " << n << " unknowns, " << written_out.n_supernodes()
+            << " supernodes, " << written_out.operations() << " operations, "
+            << written_out.factor_entries() << " entries in the factor\n";
+  if (!written_out.writes_out_panels())
+    {
+      std::cout
+        << "this CPU has no AVX2 or FMA: the written-out panels do not run here\n";
+      return 0;
+    }
+
+  double best[2] = {1e30, 1e30};
+  for (int pass = 0; pass < passes; ++pass)
+    for (int which = 0; which < 2; ++which)
+      {
+        SupernodalCholesky &cholesky = which == 0 ? written_out : blas;
+        const auto          start    = std::chrono::steady_clock::now();
+        if (!cholesky.factorize(values.data()))
+          {
+            std::cerr << "factor_benchmark: factorisation failed\n";
+            return 1;
+          }
+        best[which] =
+          std::min(best[which],
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                     .count());
+      }
+  std::cout << "factorisation, fastest of " << passes << " passes: written-out panels "
+            << best[0] * 1e3 << " ms, BLAS panels " << best[1] * 1e3 << " ms, ratio "
+            << best[0] / best[1] << "\n";
+  return 0;
+}
