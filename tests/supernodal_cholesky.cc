@@ -15,6 +15,8 @@
 // - The written-out panels (solvers/panel_cholesky.h) against LAPACK's and BLAS': the
 //   same solution to round-off in both precisions, on fronts of both kinds in one
 //   factorisation; a negative pivot in a written-out panel fails.
+// - FlushDenormals (the factorisations' guard) flushes a denormal product and restores
+//   the flags.
 // - An elimination order that is not a permutation is refused.
 // - A Schur block (the last rows of the order left unfactorised): for the middle row of
 //   a tridiagonal Toeplitz matrix (a, b) its Schur complement is a - 2 b² / p_k, p_k the
@@ -23,6 +25,8 @@
 //   through it (its dense Cholesky factor applied by the caller) gives x* to round-off.
 
 #include "solvers/supernodal_cholesky.h"
+
+#include "solvers/flush_denormals.h"
 
 #include "test_checks.h"
 
@@ -420,6 +424,23 @@ main(int argc, char **argv)
             relative_error(solve(cholesky, a, b, 3), exact) < 1e-12,
           "a negative first pivot (a written-out panel, natural order) fails, then A "
           "factorises and solves");
+  }
+
+  {
+    // Denormals flushed inside FlushDenormals (a product of 1e-40, below float's
+    // normal range, is zero) and not after it (the flags restored).
+    volatile float small = 1e-30f, smaller = 1e-10f;
+    const float    before = small * smaller;
+    float          inside = 0.f;
+    {
+      const FlushDenormals flush;
+      inside = small * smaller;
+    }
+    const float after = small * smaller;
+    check(out,
+          before > 0.f && inside == 0.f && after == before,
+          "1e-30f * 1e-10f: a denormal before, zero inside FlushDenormals, the same "
+          "denormal after");
   }
 
   {

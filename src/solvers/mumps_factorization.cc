@@ -2,6 +2,7 @@
 
 #include "io/collective.h"
 #include "solvers/fill_reducing_order.h"
+#include "solvers/flush_denormals.h"
 #include "solvers/subdomain_cholesky.h"
 #include "solvers/supernodal_cholesky.h"
 
@@ -129,7 +130,10 @@ namespace clothsim
       for (int attempt = 0;; ++attempt)
         {
           id.job = job;
-          run_mumps(id);
+          {
+            const FlushDenormals flush; // as our own Cholesky (flush_denormals.h)
+            run_mumps(id);
+          }
           const int code = id.infog[at(1)];
           if (code >= 0)
             return true;

@@ -5,6 +5,7 @@
 #include "io/collective.h"
 #include "solvers/dense_kernels.h"
 #include "solvers/fill_reducing_order.h"
+#include "solvers/flush_denormals.h"
 
 #include <Epetra_Import.h>
 #include <Epetra_IntVector.h>
@@ -175,8 +176,9 @@ namespace clothsim
   bool
   SubdomainCholesky::factorize(const Epetra_CrsMatrix &matrix)
   {
-    double *values = nullptr;
-    int    *offsets, *columns;
+    const FlushDenormals flush; // the separator's dense factorisation too
+    double              *values = nullptr;
+    int                 *offsets, *columns;
     matrix.ExtractCrsDataPointers(offsets, columns, values);
     bool definite = true;
     for (std::size_t i = 0; i < decoupled_rows.size(); ++i)
@@ -203,6 +205,7 @@ namespace clothsim
   void
   SubdomainCholesky::solve(const Epetra_Vector &b, Epetra_Vector &x)
   {
+    const FlushDenormals flush;
     for (std::size_t i = 0; i < decoupled_rows.size(); ++i)
       x[decoupled_rows[i]] = b[decoupled_rows[i]] / decoupled_diagonal[i];
     const int n_interior = static_cast<int>(interior_rows.size());

@@ -1,6 +1,7 @@
 #include "solvers/supernodal_cholesky.h"
 
 #include "solvers/dense_kernels.h"
+#include "solvers/flush_denormals.h"
 #include "solvers/panel_cholesky.h"
 
 #include <algorithm>
@@ -372,6 +373,7 @@ namespace clothsim
   bool
   SupernodalCholesky::factorize(const double *values)
   {
+    const FlushDenormals flush;
     return single ? factorize(in_single, values) : factorize(in_double, values);
   }
 
@@ -381,6 +383,7 @@ namespace clothsim
   {
     if (n_schur > 0 && !schur_solve)
       throw std::invalid_argument("SupernodalCholesky::solve: the Schur block's solve");
+    const FlushDenormals flush;
     if (single)
       solve(in_single, x, schur_solve);
     else
