@@ -1,14 +1,14 @@
 // Benchmark (not a ctest test: it asserts nothing and prints timings): one factorisation
 // by the supernodal Cholesky (solvers/supernodal_cholesky.h) with its written-out panels
 // (solvers/panel_cholesky.h) against the same with LAPACK's potrf and BLAS' trsm, in
-// single precision, on the pattern of the swinging sheet's tangent: an N x N-vertex
-// square with alternating diagonals, each triangle coupling its three vertices' three
-// displacements and its three edges' unknowns (a 12 x 12 element matrix), ordered by
-// METIS' nested dissection. The values are a diagonally dominant symmetric matrix (the
-// cost does not depend on them). The two are timed in alternating passes and each one's
-// fastest pass is reported with their ratio, measured in this one run.
+// single (default) or double precision, on the pattern of the swinging sheet's tangent:
+// an N x N-vertex square with alternating diagonals, each triangle coupling its three
+// vertices' three displacements and its three edges' unknowns (a 12 x 12 element matrix),
+// ordered by METIS' nested dissection. The values are a diagonally dominant symmetric
+// matrix (the cost does not depend on them). The two are timed in alternating passes and
+// each one's fastest pass is reported with their ratio, measured in this one run.
 //
-//   build/tests/factor_benchmark [N, default 81] [passes, default 40]
+//   build/tests/factor_benchmark [N, default 81] [passes, default 40] [single | double]
 
 #include "solvers/blas_kernels.h"
 #include "solvers/fill_reducing_order.h"
@@ -21,6 +21,7 @@
 #include <iostream>
 #include <map>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -29,11 +30,12 @@ using namespace clothsim;
 int
 main(int argc, char **argv)
 {
-  const int N      = argc > 1 ? std::atoi(argv[1]) : 81;
-  const int passes = argc > 2 ? std::atoi(argv[2]) : 40;
-  if (N < 3 || passes < 1)
+  const int         N         = argc > 1 ? std::atoi(argv[1]) : 81;
+  const int         passes    = argc > 2 ? std::atoi(argv[2]) : 40;
+  const std::string precision = argc > 3 ? argv[3] : "single";
+  if (N < 3 || passes < 1 || (precision != "single" && precision != "double"))
     {
-      std::cerr << "usage: factor_benchmark [N >= 3] [passes >= 1]\n";
+      std::cerr << "usage: factor_benchmark [N >= 3] [passes >= 1] [single | double]\n";
       return 2;
     }
   select_blas_kernels();
@@ -108,7 +110,8 @@ main(int argc, char **argv)
       std::cerr << "factor_benchmark: METIS failed\n";
       return 1;
     }
-  SupernodalCholesky written_out(true), blas(true, /*blas_panels=*/true);
+  const bool         single = precision == "single";
+  SupernodalCholesky written_out(single), blas(single, /*blas_panels=*/true);
   written_out.analyse(n, rows, columns, *order);
   blas.analyse(n, rows, columns, *order);
   std::cout << "N = " << N << ": " << n << " unknowns, " << written_out.n_supernodes()
@@ -137,8 +140,8 @@ main(int argc, char **argv)
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
                      .count());
       }
-  std::cout << "factorisation, fastest of " << passes << " passes: written-out panels "
-            << best[0] * 1e3 << " ms, BLAS panels " << best[1] * 1e3 << " ms, ratio "
-            << best[0] / best[1] << "\n";
+  std::cout << precision << "-precision factorisation, fastest of " << passes
+            << " passes: written-out panels " << best[0] * 1e3 << " ms, BLAS panels "
+            << best[1] * 1e3 << " ms, ratio " << best[0] / best[1] << "\n";
   return 0;
 }

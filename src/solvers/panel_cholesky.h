@@ -6,7 +6,7 @@
 // potrf on A11 followed by BLAS' trsm on A21 do, in one loop over a panel that stays in
 // cache: for the small and middling panels of a 2D mesh's fronts (k up to about 100)
 // OpenBLAS spends most of that time on its calls' set-up and on potrf's column-by-column
-// dot products (supernodal_cholesky.cc has the measurements).
+// dot products (README, "Numerical choices", "Written-out panels": the measurements).
 
 namespace clothsim::dense
 {

@@ -7,9 +7,9 @@
 // analyse(): the elimination tree, the supernodes (relaxed amalgamation as in CHOLMOD:
 // Chen, Davis, Hager & Rajamanickam, ACM TOMS 35, 2008), where each matrix entry lands in
 // its front, and where each child's update lands in its parent's front. factorize() then
-// runs only dense kernels (BLAS and LAPACK) and precomputed scatters: no searching,
-// sorting or allocation, which is what a general-purpose solver spends most of its time
-// on for the small fronts of a 2D mesh.
+// runs only dense kernels (BLAS, LAPACK and solvers/panel_cholesky) and precomputed
+// scatters: no searching, sorting or allocation, which is what a general-purpose solver
+// spends most of its time on for the small fronts of a 2D mesh.
 
 #include <cstdint>
 #include <functional>
