@@ -77,7 +77,8 @@ main(int argc, char **argv)
   // times the absolute sum of its row (diagonally dominant, so SPD). The excess is about
   // the swinging sheet's mass term against its stiffness: with more (1 + the sum, say),
   // the factor's entries decay with the distance in the mesh to below single
-  // precision's normal range at N = 321, and the denormals take 14 times longer.
+  // precision's normal range at N = 321 (unflushed, those denormals made a factorisation
+  // 14 times slower; solvers/flush_denormals.h now flushes them).
   std::map<std::pair<int, int>, double>  upper;
   std::mt19937                           random(2026);
   std::uniform_real_distribution<double> entry(-1., 0.);
