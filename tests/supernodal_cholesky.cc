@@ -12,8 +12,9 @@
 //   factorises the SPD one again.
 // - Structure: a dense matrix is one supernode of n(n + 1)/2 + ... entries and n³/3
 //   operations; a diagonal one n supernodes, solved to a few roundings in single.
-// - The written-out panels (solvers/panel_cholesky.h) against LAPACK's and BLAS': the
-//   same solution to round-off in both precisions, on fronts of both kinds in one
+// - The written-out panels and substitutions (solvers/panel_cholesky.h) against
+//   LAPACK's and BLAS' (potrf, trsm, trsv, gemv): the same solution to round-off in both
+//   precisions, on fronts of both kinds in one
 //   factorisation; a negative pivot in a written-out panel fails.
 // - FlushDenormals (the factorisations' guard) flushes a denormal product and restores
 //   the flags.
@@ -381,11 +382,12 @@ main(int argc, char **argv)
   }
 
   {
-    // The written-out panels (dense::panel_cholesky, k <= 96) against LAPACK's potrf and
-    // BLAS' trsm: the same solution up to round-off, in either precision, on the grid
-    // (in each order one supernode has more than 96 columns, 105 to 1,413, and the
-    // others fewer, so both kinds meet in one factorisation; single precision measured
-    // 0.8 to 2.6e-7 apart).
+    // The written-out panels (dense::panel_cholesky, k <= 96) and substitutions
+    // (dense::panel_forward_solve and panel_backward_solve, every panel) against
+    // LAPACK's potrf and BLAS' trsm, trsv and gemv: the same solution up to round-off, in
+    // either precision, on the grid (in each order one supernode has more than 96
+    // columns, 105 to 1,413, and the others fewer, so both kinds meet in one
+    // factorisation; single precision measured 0.8 to 2.6e-7 apart).
     SupernodalCholesky probe;
     out << (probe.writes_out_panels() ? "this CPU runs the written-out panels (AVX2, FMA)"
                                       : "this CPU has no AVX2 or FMA: BLAS panels only")

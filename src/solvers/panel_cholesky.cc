@@ -1,5 +1,6 @@
 #include "solvers/panel_cholesky.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace clothsim::dense
@@ -91,6 +92,36 @@ namespace clothsim::dense
             y[i] = sum;
           }
     }
+
+    // t[c] = Σ_i A[i + c lda] y[i] over i in [0, len), for the Q columns c of A: Q vector
+    // sums that share each load of y, then their lanes, then a scalar tail.
+    template <int Q, typename Number>
+    inline void
+    column_dots(const int len, const Number *A, const int lda, const Number *y, Number *t)
+    {
+      typedef Number Vector __attribute__((vector_size(32), aligned(sizeof(Number))));
+      constexpr int  width = 32 / sizeof(Number);
+      const auto     at    = [](const Number *p) {
+        return *reinterpret_cast<const Vector *>(p);
+      };
+      Vector sums[Q] = {};
+      int    i       = 0;
+      for (; i + width <= len; i += width)
+        {
+          const Vector yi = at(y + i);
+          for (int c = 0; c < Q; ++c)
+            sums[c] += at(A + static_cast<long>(c) * lda + i) * yi;
+        }
+      for (int c = 0; c < Q; ++c)
+        {
+          Number sum = 0;
+          for (int l = 0; l < width; ++l)
+            sum += sums[c][l];
+          for (int tail = i; tail < len; ++tail)
+            sum += A[static_cast<long>(c) * lda + tail] * y[tail];
+          t[c] = sum;
+        }
+    }
   } // namespace
 
 
@@ -115,10 +146,72 @@ namespace clothsim::dense
     return true;
   }
 
+  template <typename Number>
+  void
+  panel_forward_solve(const int k, const int m, const Number *L, Number *z)
+  {
+    // Columns in blocks of 8 (column-oriented forward substitution; Golub & Van Loan,
+    // section 3.1): the block's own triangle, then the rows below it less the block's
+    // columns times its solved entries, in one pass that loads each entry of L and z
+    // once.
+    constexpr int block = 8;
+    for (int j0 = 0; j0 < k; j0 += block)
+      {
+        const int j1 = std::min(k, j0 + block);
+        for (int j = j0; j < j1; ++j)
+          {
+            const Number *column = L + static_cast<long>(j) * m;
+            z[j] /= column[j];
+            for (int i = j + 1; i < j1; ++i)
+              z[i] -= column[i] * z[j];
+          }
+        subtract_row_product(
+          m - j1, j1 - j0, L + static_cast<long>(j0) * m + j1, m, z + j0, 1, z + j1);
+      }
+  }
+
+
+  template <typename Number>
+  void
+  panel_backward_solve(const int k, const int m, const Number *L, Number *z)
+  {
+    // Columns in blocks of 4, the last first: t_j = L_{j1 .., j}ᵀ z_{j1 ..} for the
+    // block's columns j (below the block, four dot products sharing each load of z), then
+    // z_j = (z_j - t_j - Σ_{j < i < j1} L_ij z_i) / L_jj up the block's triangle.
+    constexpr int block = 4;
+    for (int j1 = k; j1 > 0; j1 -= block)
+      {
+        const int j0 = std::max(0, j1 - block);
+        Number    t[block];
+        if (j1 - j0 == block)
+          column_dots<block>(m - j1, L + static_cast<long>(j0) * m + j1, m, z + j1, t);
+        else
+          for (int j = j0; j < j1; ++j)
+            column_dots<1>(
+              m - j1, L + static_cast<long>(j) * m + j1, m, z + j1, t + j - j0);
+        for (int j = j1 - 1; j >= j0; --j)
+          {
+            const Number *column = L + static_cast<long>(j) * m;
+            Number        sum    = z[j] - t[j - j0];
+            for (int i = j + 1; i < j1; ++i)
+              sum -= column[i] * z[i];
+            z[j] = sum / column[j];
+          }
+      }
+  }
+
   template bool
   panel_cholesky(int, int, float *);
   template bool
   panel_cholesky(int, int, double *);
+  template void
+  panel_forward_solve(int, int, const float *, float *);
+  template void
+  panel_forward_solve(int, int, const double *, double *);
+  template void
+  panel_backward_solve(int, int, const float *, float *);
+  template void
+  panel_backward_solve(int, int, const double *, double *);
 } // namespace clothsim::dense
 
 #pragma GCC pop_options

@@ -506,17 +506,33 @@ namespace clothsim
     Number   *rhs = numeric.rhs.data(), *work = numeric.work.data();
     for (int i = 0; i < n; ++i)
       rhs[permutation[i]] = static_cast<Number>(x[i]);
+    // The written-out substitutions work on a front's rows gathered into `work`.
+    const auto gather =
+      [&](const int k, const int r, const Number *xs, const int *below) {
+        std::copy(xs, xs + k, work);
+        for (int i = 0; i < r; ++i)
+          work[k + i] = rhs[below[i]];
+      };
     for (int s = 0; s < n_nodes; ++s)
       {
         const int k = first_column[s + 1] - first_column[s],
                   r = below_start[s + 1] - below_start[s], m = k + r;
-        const Number *L  = numeric.factor.data() + factor_start[s];
-        Number       *xs = rhs + first_column[s];
+        const Number *L     = numeric.factor.data() + factor_start[s];
+        Number       *xs    = rhs + first_column[s];
+        const int    *below = below_rows.data() + below_start[s];
+        if (written_out_panels)
+          {
+            gather(k, r, xs, below);
+            dense::panel_forward_solve(k, m, L, work);
+            std::copy(work, work + k, xs);
+            for (int i = 0; i < r; ++i)
+              rhs[below[i]] = work[k + i];
+            continue;
+          }
         dense::triangular_solve("N", k, L, m, xs);
         if (r > 0)
           {
             dense::multiply("N", r, k, Number(1), L + k, m, xs, Number(0), work);
-            const int *below = below_rows.data() + below_start[s];
             for (int i = 0; i < r; ++i)
               rhs[below[i]] -= work[i];
           }
@@ -531,11 +547,18 @@ namespace clothsim
       {
         const int k = first_column[s + 1] - first_column[s],
                   r = below_start[s + 1] - below_start[s], m = k + r;
-        const Number *L  = numeric.factor.data() + factor_start[s];
-        Number       *xs = rhs + first_column[s];
+        const Number *L     = numeric.factor.data() + factor_start[s];
+        Number       *xs    = rhs + first_column[s];
+        const int    *below = below_rows.data() + below_start[s];
+        if (written_out_panels)
+          {
+            gather(k, r, xs, below);
+            dense::panel_backward_solve(k, m, L, work);
+            std::copy(work, work + k, xs);
+            continue;
+          }
         if (r > 0)
           {
-            const int *below = below_rows.data() + below_start[s];
             for (int i = 0; i < r; ++i)
               work[i] = rhs[below[i]];
             dense::multiply("T", r, k, Number(-1), L + k, m, work, Number(1), xs);

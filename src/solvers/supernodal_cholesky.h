@@ -21,9 +21,11 @@ namespace clothsim
   {
   public:
     // The factors' precision (the matrix is given in double either way). Panels of at
-    // most `written_out_panel_columns` columns are factorised by dense::panel_cholesky
-    // where this CPU runs it, unless `blas_panels` (LAPACK's potrf and BLAS' trsm, as
-    // larger panels and CPUs without AVX2 always are; tests compare the two).
+    // most `written_out_panel_columns` columns are factorised by dense::panel_cholesky,
+    // and every panel's substitutions in solve() done by dense::panel_forward_solve and
+    // panel_backward_solve, where this CPU runs them, unless `blas_panels` (LAPACK's
+    // potrf, BLAS' trsm, trsv and gemv, as larger panels' factorisations and CPUs
+    // without AVX2 always are; tests compare the two).
     explicit SupernodalCholesky(bool single_precision = true, bool blas_panels = false);
 
     static constexpr int written_out_panel_columns = 96;
@@ -76,7 +78,7 @@ namespace clothsim
       return n_factor_entries;
     }
     // Whether panels of at most written_out_panel_columns are factorised by
-    // dense::panel_cholesky.
+    // dense::panel_cholesky (and the substitutions written out too).
     bool
     writes_out_panels() const
     {
