@@ -12,7 +12,8 @@
 //   factorises the SPD one again.
 // - Structure: a dense matrix is one supernode of n(n + 1)/2 + ... entries and n³/3
 //   operations; a diagonal one n supernodes, solved to a few roundings in single.
-// - The written-out panels and substitutions (solvers/panel_cholesky.h) against
+// - The written-out panels (in blocks) and substitutions (solvers/panel_cholesky.h)
+// against
 //   LAPACK's and BLAS' (potrf, trsm, trsv, gemv): the same solution to round-off in both
 //   precisions, on fronts of both kinds in one
 //   factorisation; a negative pivot in a written-out panel fails.
@@ -382,12 +383,12 @@ main(int argc, char **argv)
   }
 
   {
-    // The written-out panels (dense::panel_cholesky, k <= 96) and substitutions
-    // (dense::panel_forward_solve and panel_backward_solve, every panel) against
-    // LAPACK's potrf and BLAS' trsm, trsv and gemv: the same solution up to round-off, in
-    // either precision, on the grid (in each order one supernode has more than 96
-    // columns, 105 to 1,413, and the others fewer, so both kinds meet in one
-    // factorisation; single precision measured 0.8 to 2.6e-7 apart).
+    // The written-out panels (dense::panel_cholesky, in blocks of 64 columns with syrk
+    // and gemm between them) and substitutions (dense::panel_forward_solve and
+    // panel_backward_solve) against LAPACK's potrf and BLAS' trsm, trsv and gemv: the
+    // same solution up to round-off, in either precision, on the grid (in each order one
+    // supernode has 105 to 1,413 columns, so several blocks, and the others fewer than
+    // 64; single precision measured 4.9 to 6.5e-7 apart).
     SupernodalCholesky probe;
     out << (probe.writes_out_panels() ? "this CPU runs the written-out panels (AVX2, FMA)"
                                       : "this CPU has no AVX2 or FMA: BLAS panels only")

@@ -76,6 +76,34 @@ dtrsv_(const char   *uplo,
        double       *x,
        const int    *incx);
 void
+sgemm_(const char  *transa,
+       const char  *transb,
+       const int   *m,
+       const int   *n,
+       const int   *k,
+       const float *alpha,
+       const float *a,
+       const int   *lda,
+       const float *b,
+       const int   *ldb,
+       const float *beta,
+       float       *c,
+       const int   *ldc);
+void
+dgemm_(const char   *transa,
+       const char   *transb,
+       const int    *m,
+       const int    *n,
+       const int    *k,
+       const double *alpha,
+       const double *a,
+       const int    *lda,
+       const double *b,
+       const int    *ldb,
+       const double *beta,
+       double       *c,
+       const int    *ldc);
+void
 sgemv_(const char  *trans,
        const int   *m,
        const int   *n,
@@ -149,6 +177,26 @@ namespace clothsim::dense
       ssyrk_("L", "N", &r, &k, &minus_one, a, &lda, &one, c, &ldc);
     else
       dsyrk_("L", "N", &r, &k, &minus_one, a, &lda, &one, c, &ldc);
+  }
+
+  // C -= A B^T (C m x n, A m x k, B n x k).
+  template <typename Number>
+  inline void
+  subtract_product(const int     m,
+                   const int     n,
+                   const int     k,
+                   const Number *a,
+                   const int     lda,
+                   const Number *b,
+                   const int     ldb,
+                   Number       *c,
+                   const int     ldc)
+  {
+    const Number one = 1, minus_one = -1;
+    if constexpr (std::is_same_v<Number, float>)
+      sgemm_("N", "T", &m, &n, &k, &minus_one, a, &lda, b, &ldb, &one, c, &ldc);
+    else
+      dgemm_("N", "T", &m, &n, &k, &minus_one, a, &lda, b, &ldb, &one, c, &ldc);
   }
 
   // x = L^-1 x ("N") or L^-T x ("T").

@@ -127,15 +127,15 @@ namespace clothsim::dense
 
   template <typename Number>
   bool
-  panel_cholesky(const int k, const int m, Number *P)
+  panel_cholesky(const int k, const int m, Number *P, const int ld)
   {
     // Column j, rows j .. m - 1: a_j - [L]_{j.., 0..j-1} [L]_{j, 0..j-1}ᵀ, then divided
     // by the root of its diagonal entry (left-looking Cholesky; Golub & Van Loan,
     // Matrix Computations, 4th ed., algorithm 4.2.1, over the panel's rows).
     for (int j = 0; j < k; ++j)
       {
-        Number *column = P + static_cast<long>(j) * m + j;
-        subtract_row_product(m - j, j, P + j, m, P + j, m, column);
+        Number *column = P + static_cast<long>(j) * ld + j;
+        subtract_row_product(m - j, j, P + j, ld, P + j, ld, column);
         if (!(column[0] > 0))
           return false;
         const Number root = std::sqrt(column[0]), inverse = Number(1) / root;
@@ -201,9 +201,9 @@ namespace clothsim::dense
   }
 
   template bool
-  panel_cholesky(int, int, float *);
+  panel_cholesky(int, int, float *, int);
   template bool
-  panel_cholesky(int, int, double *);
+  panel_cholesky(int, int, double *, int);
   template void
   panel_forward_solve(int, int, const float *, float *);
   template void

@@ -16,12 +16,12 @@ namespace clothsim::dense
   bool
   panel_kernel_available();
 
-  // P: the m x k panel, column-major with leading dimension m (A11's lower triangle
-  // read). Returns false (P partly overwritten) if a pivot is not positive. Only where
-  // panel_kernel_available().
+  // P: the m x k panel, column-major with leading dimension ld >= m (A11's lower
+  // triangle read). Returns false (P partly overwritten) if a pivot is not positive.
+  // Only where panel_kernel_available().
   template <typename Number>
   bool
-  panel_cholesky(int k, int m, Number *P);
+  panel_cholesky(int k, int m, Number *P, int ld);
 
   // The substitutions through a factorised panel L = [L11; L21] (m x k, leading
   // dimension m), on z = [z1; z2] (z1 k entries, z2 the m - k rows below), one pass over

@@ -20,15 +20,15 @@ namespace clothsim
   class SupernodalCholesky
   {
   public:
-    // The factors' precision (the matrix is given in double either way). Panels of at
-    // most `written_out_panel_columns` columns are factorised by dense::panel_cholesky,
-    // and every panel's substitutions in solve() done by dense::panel_forward_solve and
+    // The factors' precision (the matrix is given in double either way). Each front's
+    // panel is factorised by dense::panel_cholesky in blocks of
+    // `written_out_block_columns` columns (BLAS' syrk and gemm between the blocks), and
+    // its substitutions in solve() done by dense::panel_forward_solve and
     // panel_backward_solve, where this CPU runs them, unless `blas_panels` (LAPACK's
-    // potrf, BLAS' trsm, trsv and gemv, as larger panels' factorisations and CPUs
-    // without AVX2 always are; tests compare the two).
+    // potrf, BLAS' trsm, trsv and gemv, as on CPUs without AVX2; tests compare the two).
     explicit SupernodalCholesky(bool single_precision = true, bool blas_panels = false);
 
-    static constexpr int written_out_panel_columns = 96;
+    static constexpr int written_out_block_columns = 64;
 
     // The pattern of the upper triangle (0-based, rows[k] <= columns[k], each entry
     // once), and the elimination order: order[p] is the row eliminated p-th (a
@@ -77,8 +77,8 @@ namespace clothsim
     {
       return n_factor_entries;
     }
-    // Whether panels of at most written_out_panel_columns are factorised by
-    // dense::panel_cholesky (and the substitutions written out too).
+    // Whether the panels are factorised by dense::panel_cholesky (and the substitutions
+    // written out too).
     bool
     writes_out_panels() const
     {
