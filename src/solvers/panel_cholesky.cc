@@ -1,7 +1,10 @@
 #include "solvers/panel_cholesky.h"
 
+#include "solvers/dense_kernels.h"
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace clothsim::dense
 {
@@ -11,6 +14,36 @@ namespace clothsim::dense
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   }
+
+
+  // Compiled for any CPU (it calls the BLAS wrappers of dense_kernels.h, which must not
+  // be compiled for AVX2 here); its blocks go to panel_cholesky below.
+  template <typename Number>
+  bool
+  blocked_panel_cholesky(const int k, const int m, Number *P, const int block_columns)
+  {
+    for (int j0 = 0; j0 < k; j0 += block_columns)
+      {
+        const int w = std::min(block_columns, k - j0), rows = m - j0, rest = k - j0 - w;
+        Number   *block = P + static_cast<std::int64_t>(j0) * m + j0;
+        if (!panel_cholesky(w, rows, block, m))
+          return false;
+        if (rest == 0)
+          continue;
+        const Number *below    = block + w; // the block's rows past its own columns
+        Number       *trailing = block + static_cast<std::int64_t>(w) * m + w;
+        subtract_gram(rest, w, below, m, trailing, m);
+        if (rows - w > rest)
+          subtract_product(
+            rows - w - rest, rest, w, below + rest, m, below, m, trailing + rest, m);
+      }
+    return true;
+  }
+
+  template bool
+  blocked_panel_cholesky(int, int, float *, int);
+  template bool
+  blocked_panel_cholesky(int, int, double *, int);
 } // namespace clothsim::dense
 
 

@@ -80,35 +80,6 @@ namespace clothsim
              (columns <= 48 && zero_fraction < 0.1) || zero_fraction < 0.05;
     }
 
-    // A front's m x k panel factorised in blocks of b columns, each block's columns (all
-    // rows from its diagonal down) by dense::panel_cholesky, then the columns right of it
-    // less the block's contribution: BLAS' syrk on their diagonal square and gemm on the
-    // rows below it (right-looking over the blocks; Golub & Van Loan, section 4.2.9).
-    // Blocks of 32 to 64 columns measured 5 to 12 % faster than LAPACK's potrf and BLAS'
-    // trsm on the panels of more than 96 columns (N = 321), and 4 % on all (N = 81); 96
-    // and 192 no faster (README, "Written-out panels").
-    template <typename Number>
-    bool
-    written_out_panel(const int k, const int m, Number *P)
-    {
-      constexpr int b = SupernodalCholesky::written_out_block_columns;
-      for (int j0 = 0; j0 < k; j0 += b)
-        {
-          const int w = std::min(b, k - j0), rows = m - j0, rest = k - j0 - w;
-          Number   *block = P + static_cast<std::int64_t>(j0) * m + j0;
-          if (!dense::panel_cholesky(w, rows, block, m))
-            return false;
-          if (rest == 0)
-            continue;
-          const Number *below    = block + w; // the block's rows past its own columns
-          Number       *trailing = block + static_cast<std::int64_t>(w) * m + w;
-          dense::subtract_gram(rest, w, below, m, trailing, m);
-          if (rows - w > rest)
-            dense::subtract_product(
-              rows - w - rest, rest, w, below + rest, m, below, m, trailing + rest, m);
-        }
-      return true;
-    }
   } // namespace
 
 
@@ -505,7 +476,7 @@ namespace clothsim
           break; // the Schur complement, left to the caller
         if (written_out_panels)
           {
-            if (!written_out_panel(k, m, P))
+            if (!dense::blocked_panel_cholesky(k, m, P, written_out_block_columns))
               return false;
           }
         else
