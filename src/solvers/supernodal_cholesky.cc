@@ -79,7 +79,6 @@ namespace clothsim
       return columns <= 4 || (columns <= 16 && zero_fraction < 0.8) ||
              (columns <= 48 && zero_fraction < 0.1) || zero_fraction < 0.05;
     }
-
   } // namespace
 
 
