@@ -506,23 +506,38 @@ namespace clothsim
     Number   *rhs = numeric.rhs.data(), *work = numeric.work.data();
     for (int i = 0; i < n; ++i)
       rhs[permutation[i]] = static_cast<Number>(x[i]);
+    // Supernode s's front: k pivot columns and r rows below, its m x k panel L, its
+    // pivots' entries xs of the right-hand side and the rows below.
+    struct Front
+    {
+      int           k, r, m;
+      const Number *L;
+      Number       *xs;
+      const int    *below;
+    };
+    const auto front = [&](const int s) {
+      const int k = first_column[s + 1] - first_column[s],
+                r = below_start[s + 1] - below_start[s];
+      return Front{k,
+                   r,
+                   k + r,
+                   numeric.factor.data() + factor_start[s],
+                   rhs + first_column[s],
+                   below_rows.data() + below_start[s]};
+    };
     // The written-out substitutions work on a front's rows gathered into `work`.
-    const auto gather =
-      [&](const int k, const int r, const Number *xs, const int *below) {
-        std::copy(xs, xs + k, work);
-        for (int i = 0; i < r; ++i)
-          work[k + i] = rhs[below[i]];
-      };
+    const auto gather = [&](const Front &f) {
+      std::copy(f.xs, f.xs + f.k, work);
+      for (int i = 0; i < f.r; ++i)
+        work[f.k + i] = rhs[f.below[i]];
+    };
     for (int s = 0; s < n_nodes; ++s)
       {
-        const int k = first_column[s + 1] - first_column[s],
-                  r = below_start[s + 1] - below_start[s], m = k + r;
-        const Number *L     = numeric.factor.data() + factor_start[s];
-        Number       *xs    = rhs + first_column[s];
-        const int    *below = below_rows.data() + below_start[s];
+        const Front f                      = front(s);
+        const auto [k, r, m, L, xs, below] = f;
         if (written_out_panels)
           {
-            gather(k, r, xs, below);
+            gather(f);
             dense::panel_forward_solve(k, m, L, work);
             std::copy(work, work + k, xs);
             for (int i = 0; i < r; ++i)
@@ -545,14 +560,11 @@ namespace clothsim
       }
     for (int s = n_nodes - 1; s >= 0; --s)
       {
-        const int k = first_column[s + 1] - first_column[s],
-                  r = below_start[s + 1] - below_start[s], m = k + r;
-        const Number *L     = numeric.factor.data() + factor_start[s];
-        Number       *xs    = rhs + first_column[s];
-        const int    *below = below_rows.data() + below_start[s];
+        const Front f                      = front(s);
+        const auto [k, r, m, L, xs, below] = f;
         if (written_out_panels)
           {
-            gather(k, r, xs, below);
+            gather(f);
             dense::panel_backward_solve(k, m, L, work);
             std::copy(work, work + k, xs);
             continue;
