@@ -414,7 +414,51 @@ main(int argc, char **argv)
                       what + "written-out panels' relative error",
                       relative_error(x_written_out, exact),
                       single ? 1e-4 : 1e-13);
+          // The forward substitution done with the factorisation, then finish_solve():
+          // the same operations in the same order as solve(), so the same bits.
+          for (SupernodalCholesky *kind : {&written_out, &blas})
+            {
+              std::vector<double> plain = b, fused(a.n, 0.);
+              kind->factorize(a.values.data());
+              kind->solve(plain.data());
+              const bool factorised = kind->factorize(a.values.data(), b.data());
+              kind->finish_solve(fused.data());
+              check(out,
+                    factorised && fused == plain,
+                    what + (kind == &blas ? "BLAS" : "written-out") +
+                      " panels: factorize(A, b) and finish_solve() give solve()'s "
+                      "bits");
+            }
         }
+    {
+      // finish_solve() only right after a factorize() with a right-hand side.
+      SupernodalCholesky  cholesky;
+      std::vector<double> x(a.n), other = b;
+      cholesky.analyse(a.n, a.rows, a.columns, shuffled);
+      const auto refused = [&] {
+        try
+          {
+            cholesky.finish_solve(x.data());
+          }
+        catch (const std::logic_error &)
+          {
+            return true;
+          }
+        return false;
+      };
+      cholesky.factorize(a.values.data());
+      const bool without_rhs = refused();
+      cholesky.factorize(a.values.data(), b.data());
+      cholesky.finish_solve(x.data());
+      const bool twice = refused();
+      cholesky.factorize(a.values.data(), b.data());
+      cholesky.solve(other.data());
+      const bool after_solve = refused();
+      check(out,
+            without_rhs && twice && after_solve,
+            "finish_solve() is refused without a right-hand side, a second time, and "
+            "after a solve() of another one");
+    }
     Upper indefinite = a;
     for (std::size_t k = 0; k < indefinite.values.size(); ++k)
       if (indefinite.rows[k] == indefinite.columns[k] && indefinite.rows[k] == 0)

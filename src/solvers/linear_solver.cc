@@ -47,7 +47,8 @@ namespace clothsim
 
 
   void
-  LinearSolver::update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix)
+  LinearSolver::update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix,
+                                      const TrilinosWrappers::MPI::Vector  *rhs)
   {
     if (parameters.method == "direct")
       {
@@ -72,12 +73,14 @@ namespace clothsim
             if (!mumps)
               make(definite ? MumpsFactorization::Symmetry::positive_definite
                             : MumpsFactorization::Symmetry::indefinite);
-            factorization_ok = mumps->factorize(matrix.trilinos_matrix());
+            const Epetra_Vector *b =
+              rhs != nullptr ? (*rhs).trilinos_vector()(0) : nullptr;
+            factorization_ok = mumps->factorize(matrix.trilinos_matrix(), b);
             if (definite && (!factorization_ok || mumps->negative_pivots() > 0))
               {
                 definite = false;
                 make(MumpsFactorization::Symmetry::indefinite);
-                factorization_ok = mumps->factorize(matrix.trilinos_matrix());
+                factorization_ok = mumps->factorize(matrix.trilinos_matrix(), b);
               }
             if (!factorization_ok)
               last_failure = mumps->failure();

@@ -40,9 +40,12 @@ namespace clothsim
   public:
     LinearSolver(const LinearSolverParameters &parameters, NearNullSpace near_null_space);
 
-    // Builds the preconditioner for `matrix` (call after every new tangent).
+    // Builds the preconditioner for `matrix` (call after every new tangent). `rhs`: the
+    // right-hand side of the next solve(), if known; the direct solver's Cholesky then
+    // does part of that solve with the factorisation (MumpsFactorization::factorize).
     void
-    update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix);
+    update_preconditioner(const TrilinosWrappers::SparseMatrix &matrix,
+                          const TrilinosWrappers::MPI::Vector  *rhs = nullptr);
 
     // The next update_preconditioner builds the AMG hierarchy afresh (a changed time step
     // scales the tangent, and a hierarchy recomputed on old aggregates can then fail).

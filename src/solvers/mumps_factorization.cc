@@ -12,6 +12,7 @@
 #include <Epetra_IntVector.h>
 
 #include <algorithm>
+#include <cstring>
 #include <sstream>
 
 namespace clothsim
@@ -237,8 +238,9 @@ namespace clothsim
 
 
   bool
-  MumpsFactorization::factorize(const Epetra_CrsMatrix &matrix)
+  MumpsFactorization::factorize(const Epetra_CrsMatrix &matrix, const Epetra_Vector *rhs)
   {
+    forwarded_rhs.clear();
     // Which entries of the row views go to MUMPS is found once (the sparsity does not
     // change after the analysis).
     const bool first = !analysed;
@@ -345,12 +347,20 @@ namespace clothsim
         analysed = true;
         set_up_cholesky(matrix);
         if (cholesky)
-          return factorize(matrix); // from the matrix's value array
+          return factorize(matrix, rhs); // from the matrix's value array
       }
     if (cholesky)
       {
-        if (cholesky->factorize(crs_values))
+        if (rhs != nullptr)
+          {
+            forwarded_rhs.resize(kept_rows.size());
+            for (std::size_t i = 0; i < kept_rows.size(); ++i)
+              forwarded_rhs[i] = (*rhs)[kept_rows[i]];
+          }
+        if (cholesky->factorize(crs_values,
+                                rhs != nullptr ? forwarded_rhs.data() : nullptr))
           return true;
+        forwarded_rhs.clear();
         last_failure =
           std::string("the Cholesky factorisation met a pivot that is not "
                       "positive (the matrix is not positive definite, or too "
@@ -438,7 +448,15 @@ namespace clothsim
       rhs_values[i] = b[kept_rows[i]];
     if (cholesky)
       {
-        cholesky->solve(rhs_values.data());
+        // The right-hand side whose forward substitution the factorisation did.
+        if (!forwarded_rhs.empty() && forwarded_rhs.size() == rhs_values.size() &&
+            std::memcmp(forwarded_rhs.data(),
+                        rhs_values.data(),
+                        rhs_values.size() * sizeof(double)) == 0)
+          cholesky->finish_solve(rhs_values.data());
+        else
+          cholesky->solve(rhs_values.data());
+        forwarded_rhs.clear();
         for (std::size_t i = 0; i < kept_rows.size(); ++i)
           x[kept_rows[i]] = rhs_values[i];
         return true;

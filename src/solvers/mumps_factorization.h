@@ -63,9 +63,13 @@ namespace clothsim
 
     // Factorises `matrix` (collective). The first call also analyses its sparsity, which
     // later calls must share. Returns false with failure() set if MUMPS fails (e.g. a
-    // zero pivot, or a non-positive one with Symmetry::positive_definite).
+    // zero pivot, or a non-positive one with Symmetry::positive_definite). `rhs`: the
+    // right-hand side of the next solve(), if known; where SupernodalCholesky factorises
+    // (one rank, definite) its forward substitution is then done with the factorisation
+    // (SupernodalCholesky::factorize), and the next solve() of that same b (compared
+    // entry by entry) does only the backward one.
     bool
-    factorize(const Epetra_CrsMatrix &matrix);
+    factorize(const Epetra_CrsMatrix &matrix, const Epetra_Vector *rhs = nullptr);
 
     // The next factorize() analyses the sparsity again (the matrix's changed).
     void
@@ -142,6 +146,9 @@ namespace clothsim
     // Right-hand side: the kept rows' 1-based new indices (IRHS_loc) and values.
     std::vector<int>    rhs_rows;
     std::vector<double> rhs_values;
+    // The kept rows' entries of the right-hand side given to the last factorize(), while
+    // the Cholesky holds its forward substitution (empty otherwise).
+    std::vector<double> forwarded_rhs;
 
     // Numbers the kept rows, finds the entries for MUMPS (first factorisation).
     bool

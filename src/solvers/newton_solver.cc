@@ -146,7 +146,7 @@ namespace clothsim
         if (!context.tangent.preconditioner_current)
           {
             TimerOutput::Scope scope(context.timer, "preconditioner setup");
-            context.linear_solver.update_preconditioner(context.matrix);
+            context.linear_solver.update_preconditioner(context.matrix, &context.rhs);
             context.tangent.preconditioner_current = true;
           }
         unsigned int iterations = 0;

@@ -1,6 +1,7 @@
 #include "solvers/supernodal_cholesky.h"
 
 #include "solvers/dense_kernels.h"
+#include "solvers/elimination_tree.h"
 #include "solvers/flush_denormals.h"
 #include "solvers/panel_cholesky.h"
 
@@ -13,63 +14,6 @@ namespace clothsim
 {
   namespace
   {
-    // Liu's elimination tree of the lower pattern given by rows: for each row i, the
-    // columns j < i of its entries (SIAM J. Matrix Anal. Appl. 11, 1990, alg. 4.2).
-    std::vector<int>
-    elimination_tree(const std::vector<std::vector<int>> &row_entries)
-    {
-      const int        n = static_cast<int>(row_entries.size());
-      std::vector<int> parent(n, -1), ancestor(n, -1);
-      for (int i = 0; i < n; ++i)
-        for (int j : row_entries[i])
-          for (int r = j; r != -1 && r != i;)
-            {
-              const int next = ancestor[r];
-              ancestor[r]    = i;
-              if (next == -1)
-                parent[r] = i;
-              r = next;
-            }
-      return parent;
-    }
-
-    // A postorder of the forest: post[p] is the node visited p-th.
-    std::vector<int>
-    postorder(const std::vector<int> &parent)
-    {
-      const int        n = static_cast<int>(parent.size());
-      std::vector<int> head(n, -1), next(n, -1), post, stack;
-      for (int j = n - 1; j >= 0; --j) // children listed in increasing order
-        if (parent[j] != -1)
-          {
-            next[j]         = head[parent[j]];
-            head[parent[j]] = j;
-          }
-      post.reserve(n);
-      for (int root = 0; root < n; ++root)
-        {
-          if (parent[root] != -1)
-            continue;
-          stack.push_back(root);
-          while (!stack.empty())
-            {
-              const int j = stack.back();
-              if (head[j] != -1)
-                {
-                  const int child = head[j];
-                  head[j]         = next[child];
-                  stack.push_back(child);
-                }
-              else
-                {
-                  post.push_back(j);
-                  stack.pop_back();
-                }
-            }
-        }
-      return post;
-    }
-
     // Relaxed amalgamation: merge a child supernode of `columns` columns into its
     // parent if the merged one has at most 4 columns, or its explicit zeros stay
     // below a fraction that falls with its size (CHOLMOD's defaults).
@@ -371,10 +315,17 @@ namespace clothsim
 
 
   bool
-  SupernodalCholesky::factorize(const double *values)
+  SupernodalCholesky::factorize(const double *values, const double *rhs)
   {
+    if (rhs != nullptr && n_schur > 0)
+      throw std::invalid_argument(
+        "SupernodalCholesky::factorize: a right-hand side with a Schur block");
     const FlushDenormals flush;
-    return single ? factorize(in_single, values) : factorize(in_double, values);
+    forwarded = false;
+    const bool ok =
+      single ? factorize(in_single, values, rhs) : factorize(in_double, values, rhs);
+    forwarded = ok && rhs != nullptr;
+    return ok;
   }
 
 
@@ -384,10 +335,26 @@ namespace clothsim
     if (n_schur > 0 && !schur_solve)
       throw std::invalid_argument("SupernodalCholesky::solve: the Schur block's solve");
     const FlushDenormals flush;
+    forwarded = false; // numeric.rhs is overwritten
     if (single)
-      solve(in_single, x, schur_solve);
+      solve(in_single, x, schur_solve, false);
     else
-      solve(in_double, x, schur_solve);
+      solve(in_double, x, schur_solve, false);
+  }
+
+
+  void
+  SupernodalCholesky::finish_solve(double *x)
+  {
+    if (!forwarded)
+      throw std::logic_error("SupernodalCholesky::finish_solve: the last factorize() "
+                             "had no right-hand side, or its solve was finished");
+    forwarded = false;
+    const FlushDenormals flush;
+    if (single)
+      solve(in_single, x, {}, true);
+    else
+      solve(in_double, x, {}, true);
   }
 
 
@@ -411,10 +378,15 @@ namespace clothsim
 
   template <typename Number>
   bool
-  SupernodalCholesky::factorize(Numeric<Number> &numeric, const double *values)
+  SupernodalCholesky::factorize(Numeric<Number> &numeric,
+                                const double    *values,
+                                const double    *rhs)
   {
-    const int    n_nodes = n_supernodes();
-    std::int64_t top[2]  = {0, 0}; // ends of the update stacks
+    const int n_nodes = n_supernodes();
+    if (rhs != nullptr)
+      for (int i = 0; i < n; ++i)
+        numeric.rhs[permutation[i]] = static_cast<Number>(rhs[i]);
+    std::int64_t top[2] = {0, 0}; // ends of the update stacks
     for (int s = 0; s < n_nodes; ++s)
       {
         const int k = first_column[s + 1] - first_column[s],
@@ -485,6 +457,10 @@ namespace clothsim
             if (r > 0)
               dense::right_solve_transposed(r, k, P, m, P + k, m);
           }
+        // The forward substitution through the panel while it is in cache: the
+        // right-hand side's rows of this front are final, its descendants come first.
+        if (rhs != nullptr)
+          substitute(numeric, s, true);
         if (r > 0)
           {
             dense::subtract_gram(r, k, P + k, m, U, r);
@@ -496,54 +472,43 @@ namespace clothsim
 
 
   template <typename Number>
-  void
-  SupernodalCholesky::solve(Numeric<Number>                     &numeric,
-                            double                              *x,
-                            const std::function<void(double *)> &schur_solve)
+  typename SupernodalCholesky::template Front<Number>
+  SupernodalCholesky::front(Numeric<Number> &numeric, const int s) const
   {
-    // The supernodes eliminated here: all but the Schur block's.
-    const int n_nodes = n_supernodes() - (n_schur > 0 ? 1 : 0);
-    Number   *rhs = numeric.rhs.data(), *work = numeric.work.data();
-    for (int i = 0; i < n; ++i)
-      rhs[permutation[i]] = static_cast<Number>(x[i]);
-    // Supernode s's front: k pivot columns and r rows below, its m x k panel L, its
-    // pivots' entries xs of the right-hand side and the rows below.
-    struct Front
-    {
-      int           k, r, m;
-      const Number *L;
-      Number       *xs;
-      const int    *below;
-    };
-    const auto front = [&](const int s) {
-      const int k = first_column[s + 1] - first_column[s],
-                r = below_start[s + 1] - below_start[s];
-      return Front{k,
-                   r,
-                   k + r,
-                   numeric.factor.data() + factor_start[s],
-                   rhs + first_column[s],
-                   below_rows.data() + below_start[s]};
-    };
-    // The written-out substitutions work on a front's rows gathered into `work`.
-    const auto gather = [&](const Front &f) {
-      std::copy(f.xs, f.xs + f.k, work);
-      for (int i = 0; i < f.r; ++i)
-        work[f.k + i] = rhs[f.below[i]];
-    };
-    for (int s = 0; s < n_nodes; ++s)
+    const int k = first_column[s + 1] - first_column[s],
+              r = below_start[s + 1] - below_start[s];
+    return {k,
+            r,
+            k + r,
+            numeric.factor.data() + factor_start[s],
+            numeric.rhs.data() + first_column[s],
+            below_rows.data() + below_start[s]};
+  }
+
+
+  template <typename Number>
+  void
+  SupernodalCholesky::substitute(Numeric<Number> &numeric,
+                                 const int        s,
+                                 const bool       forward) const
+  {
+    const Front<Number> f              = front(numeric, s);
+    const auto [k, r, m, L, xs, below] = f;
+    Number *rhs = numeric.rhs.data(), *work = numeric.work.data();
+    if (written_out_panels)
       {
-        const Front f                      = front(s);
-        const auto [k, r, m, L, xs, below] = f;
-        if (written_out_panels)
-          {
-            gather(f);
-            dense::panel_forward_solve(k, m, L, work);
-            std::copy(work, work + k, xs);
-            for (int i = 0; i < r; ++i)
-              rhs[below[i]] = work[k + i];
-            continue;
-          }
+        f.gather(rhs, work);
+        if (forward)
+          dense::panel_forward_solve(k, m, L, work);
+        else
+          dense::panel_backward_solve(k, m, L, work);
+        std::copy(work, work + k, xs);
+        for (int i = 0; forward && i < r; ++i)
+          rhs[below[i]] = work[k + i];
+        return;
+      }
+    if (forward)
+      {
         dense::triangular_solve("N", k, L, m, xs);
         if (r > 0)
           {
@@ -551,6 +516,34 @@ namespace clothsim
             for (int i = 0; i < r; ++i)
               rhs[below[i]] -= work[i];
           }
+        return;
+      }
+    if (r > 0)
+      {
+        for (int i = 0; i < r; ++i)
+          work[i] = rhs[below[i]];
+        dense::multiply("T", r, k, Number(-1), L + k, m, work, Number(1), xs);
+      }
+    dense::triangular_solve("T", k, L, m, xs);
+  }
+
+
+  template <typename Number>
+  void
+  SupernodalCholesky::solve(Numeric<Number>                     &numeric,
+                            double                              *x,
+                            const std::function<void(double *)> &schur_solve,
+                            const bool                           forwarded)
+  {
+    // The supernodes eliminated here: all but the Schur block's.
+    const int n_nodes = n_supernodes() - (n_schur > 0 ? 1 : 0);
+    Number   *rhs     = numeric.rhs.data();
+    if (!forwarded)
+      {
+        for (int i = 0; i < n; ++i)
+          rhs[permutation[i]] = static_cast<Number>(x[i]);
+        for (int s = 0; s < n_nodes; ++s)
+          substitute(numeric, s, true);
       }
     if (n_schur > 0)
       {
@@ -559,24 +552,7 @@ namespace clothsim
         std::copy(block.begin(), block.end(), rhs + n - n_schur);
       }
     for (int s = n_nodes - 1; s >= 0; --s)
-      {
-        const Front f                      = front(s);
-        const auto [k, r, m, L, xs, below] = f;
-        if (written_out_panels)
-          {
-            gather(f);
-            dense::panel_backward_solve(k, m, L, work);
-            std::copy(work, work + k, xs);
-            continue;
-          }
-        if (r > 0)
-          {
-            for (int i = 0; i < r; ++i)
-              work[i] = rhs[below[i]];
-            dense::multiply("T", r, k, Number(-1), L + k, m, work, Number(1), xs);
-          }
-        dense::triangular_solve("T", k, L, m, xs);
-      }
+      substitute(numeric, s, false);
     for (int i = 0; i < n; ++i)
       x[i] = rhs[permutation[i]];
   }

@@ -11,6 +11,7 @@
 // scatters: no searching, sorting or allocation, which is what a general-purpose solver
 // spends most of its time on for the small fronts of a 2D mesh.
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -49,9 +50,19 @@ namespace clothsim
 
     // Factorises the matrix whose upper-triangle entries are in `values` (where
     // analyse() placed them). Returns false if a pivot is not positive (the matrix is not
-    // positive definite, or too ill-conditioned for the factors' precision).
+    // positive definite, or too ill-conditioned for the factors' precision). With `rhs`
+    // (n entries; not with a Schur block), the forward substitution of rhs is done front
+    // by front as each is factorised, while its panel is still in cache, and
+    // finish_solve() completes x = A⁻¹ rhs with the backward substitution alone: one
+    // pass over the factors less than solve() (Newton's tangent and right-hand side
+    // arrive together).
     bool
-    factorize(const double *values);
+    factorize(const double *values, const double *rhs = nullptr);
+
+    // After factorize(values, rhs): x = A⁻¹ rhs, bit for bit what solve() on rhs gives.
+    // Once per such factorize(); throws std::logic_error otherwise.
+    void
+    finish_solve(double *x);
 
     // With a Schur block: adds the last factorisation's Schur complement to `schur`, the
     // lower triangle of an n_schur x n_schur column-major matrix (row and column i are
@@ -122,10 +133,42 @@ namespace clothsim
     };
     template <typename Number>
     bool
-    factorize(Numeric<Number> &numeric, const double *values);
+    factorize(Numeric<Number> &numeric, const double *values, const double *rhs);
+    // With `forwarded`, numeric.rhs already holds the forward substitution's result.
     template <typename Number>
     void
-    solve(Numeric<Number> &numeric, double *x, const std::function<void(double *)> &);
+    solve(Numeric<Number>                     &numeric,
+          double                              *x,
+          const std::function<void(double *)> &schur_solve,
+          bool                                 forwarded);
+    // Supernode s's front in the substitutions: k pivot columns and r rows below, its
+    // m x k panel L, its pivots' entries xs of the permuted right-hand side, and the
+    // rows below.
+    template <typename Number>
+    struct Front
+    {
+      int           k, r, m;
+      const Number *L;
+      Number       *xs;
+      const int    *below;
+      // Its rows of the right-hand side in `work`, pivots first (the written-out
+      // substitutions work on them there).
+      void
+      gather(const Number *rhs, Number *work) const
+      {
+        std::copy(xs, xs + k, work);
+        for (int i = 0; i < r; ++i)
+          work[k + i] = rhs[below[i]];
+      }
+    };
+    template <typename Number>
+    Front<Number>
+    front(Numeric<Number> &numeric, int s) const;
+    // The forward (L z = b) or backward (Lᵀ x = z) substitution through front s, in
+    // place on numeric.rhs.
+    template <typename Number>
+    void
+    substitute(Numeric<Number> &numeric, int s, bool forward) const;
 
     bool              single;
     bool              written_out_panels;
@@ -134,6 +177,7 @@ namespace clothsim
     double            n_operations     = 0.;
     std::int64_t      n_factor_entries = 0;
     std::int64_t      max_stack[2]     = {0, 0};
-    std::vector<char> parity; // of each supernode's depth in the tree
+    std::vector<char> parity;            // of each supernode's depth in the tree
+    bool              forwarded = false; // finish_solve() may follow
   };
 } // namespace clothsim
