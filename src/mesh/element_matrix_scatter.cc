@@ -27,6 +27,7 @@ namespace clothsim::mesh
         slot.assign(n_elements, unknown);
         local_rows.clear();
         positions.clear();
+        diagonal_dofs.clear();
       }
     // Each row's values, looked up again unless the matrix keeps them in one array
     // (StorageOptimized) that has not moved: a loop over all rows at every start would
@@ -59,20 +60,34 @@ namespace clothsim::mesh
 
 
   void
-  ElementMatrixScatter::add_to_diagonal(TrilinosWrappers::SparseMatrix &matrix,
-                                        const std::vector<types::global_dof_index> &dofs,
+  ElementMatrixScatter::add_to_diagonal(const std::vector<types::global_dof_index> &dofs,
                                         const double                                value)
   {
-    auto &crs = const_cast<Epetra_CrsMatrix &>(matrix.trilinos_matrix());
-    for (const types::global_dof_index dof : dofs)
+    Assert(matrix_id != nullptr, ExcMessage("add_to_diagonal() before start()"));
+    if (dofs != diagonal_dofs)
       {
-        const int row    = crs.LRID(static_cast<int>(dof));
-        const int column = crs.LCID(static_cast<int>(dof));
-        AssertThrow(row >= 0 && column >= 0 &&
-                      crs.SumIntoMyValues(row, 1, &value, &column) == 0,
-                    ExcMessage("the diagonal entry of dof " + std::to_string(dof) +
-                               " is not in this rank's rows of the matrix"));
+        const auto &crs = *static_cast<const Epetra_CrsMatrix *>(matrix_id);
+        diagonal_places.clear();
+        for (const types::global_dof_index dof : dofs)
+          {
+            const int  row       = crs.RowMap().LID(static_cast<int>(dof));
+            const int  column    = crs.ColMap().LID(static_cast<int>(dof));
+            int        n_entries = 0;
+            double    *values    = nullptr;
+            int       *columns   = nullptr;
+            const int *found     = nullptr;
+            if (row >= 0 && column >= 0 &&
+                crs.ExtractMyRowView(row, n_entries, values, columns) == 0)
+              found = std::find(columns, columns + n_entries, column);
+            AssertThrow(found != nullptr && found != columns + n_entries,
+                        ExcMessage("the diagonal entry of dof " + std::to_string(dof) +
+                                   " is not in this rank's rows of the matrix"));
+            diagonal_places.emplace_back(row, static_cast<int>(found - columns));
+          }
+        diagonal_dofs = dofs;
       }
+    for (const auto &[row, place] : diagonal_places)
+      row_values[row][place] += value;
   }
 
 

@@ -53,6 +53,9 @@ namespace clothsim::physics
   {
     for (const auto &element : discretization.elements())
       rest.push_back(membrane_rest_data(element.reference));
+    for (const types::global_dof_index dof : discretization.unused_dofs())
+      if (discretization.owned_dofs().is_element(dof))
+        owned_unused_dofs.push_back(dof);
   }
 
 
@@ -279,11 +282,7 @@ namespace clothsim::physics
     if (hessian != nullptr)
       {
         // Unit diagonal on the unused (constrained) angle-component dofs.
-        std::vector<types::global_dof_index> owned_unused;
-        for (const types::global_dof_index dof : discretization.unused_dofs())
-          if (discretization.owned_dofs().is_element(dof))
-            owned_unused.push_back(dof);
-        mesh::ElementMatrixScatter::add_to_diagonal(*hessian, owned_unused, 1.);
+        hessian_scatter.add_to_diagonal(owned_unused_dofs, 1.);
         hessian->compress(VectorOperation::add);
       }
     return Utilities::MPI::sum(value, discretization.get_communicator());

@@ -183,10 +183,11 @@ namespace clothsim::physics
     bool                                      directors = false;
     unsigned int                              n_relevant_dofs; // of ghosted vectors
     std::vector<MembraneRestData>             rest; // per element, for strain and areas
-    mutable mesh::LocalSums                   gradient_sums;   // the cell loop's gradient
-    mutable mesh::ElementMatrixScatter        hessian_scatter; // and its Hessian
-    mutable std::vector<double>               seconds; // per term, see term_seconds()
-    const double                              timing_overhead; // s per sample
+    std::vector<types::global_dof_index> owned_unused_dofs; // unit diagonal in tangents
+    mutable mesh::LocalSums              gradient_sums;     // the cell loop's gradient
+    mutable mesh::ElementMatrixScatter   hessian_scatter;   // and its Hessian
+    mutable std::vector<double>          seconds;         // per term, see term_seconds()
+    const double                         timing_overhead; // s per sample
   };
 
   // Output fields of an element term (membrane stress, curvature change, ...).
