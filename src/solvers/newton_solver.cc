@@ -1,6 +1,7 @@
 #include "solvers/newton_solver.h"
 
 #include "solvers/energy_line_search.h"
+#include "solvers/tangent_monitor.h"
 
 #include <NOX.H>
 #include <NOX_Epetra_Group.H>
@@ -60,6 +61,10 @@ namespace clothsim
       unsigned int   projected_fallbacks = 0;
       unsigned int   tangents            = 0;
       std::string    failure             = std::string();
+      // Tangents assembled with Φ (NonlinearProblem::speculate_tangents), and the
+      // convergence test's step tolerance (m).
+      bool   speculate      = false;
+      double step_tolerance = 0.;
     };
 
     // NOX's residual callback.
@@ -137,6 +142,16 @@ namespace clothsim
         if (!ok)
           return false;
         copy(context.solution, result.getEpetraVector());
+        // An update that passes the convergence test already at this iterate will most
+        // likely end the solve: no tangent at its end then.
+        if (context.speculate)
+          {
+            const bool last =
+              context.problem.update_size(context.solution) < context.step_tolerance ||
+              context.problem.update_ratio(context.solution, context.iterate) < 1.;
+            context.problem.speculate_tangents(last ? nullptr : &context.matrix,
+                                               context.parameters.tangent == "projected");
+          }
         return true;
       }
 
@@ -350,47 +365,6 @@ namespace clothsim
       Context                    &context;
       NOX::StatusTest::StatusType status = NOX::StatusTest::Unevaluated;
     };
-
-    // Never decides; after each iteration it asks for a new tangent if the last one
-    // reduced the residual by less than half or its step had to be cut (modified
-    // Newton's criterion for a worn-out tangent).
-    class TangentMonitor : public NOX::StatusTest::Generic
-    {
-    public:
-      explicit TangentMonitor(NewtonSolver::TangentState &tangent)
-        : tangent(tangent)
-      {}
-
-      NOX::StatusTest::StatusType
-      checkStatus(const NOX::Solver::Generic &solver, NOX::StatusTest::CheckType) override
-      {
-        if (solver.getNumIterations() > 0)
-          {
-            const auto *line_search =
-              dynamic_cast<const NOX::Solver::LineSearchBased *>(&solver);
-            const bool cut = line_search != nullptr && line_search->getStepSize() != 1.;
-            if (cut || solver.getSolutionGroup().getNormF() >
-                         0.5 * solver.getPreviousSolutionGroup().getNormF())
-              tangent.refresh = true;
-          }
-        return NOX::StatusTest::Unconverged;
-      }
-
-      NOX::StatusTest::StatusType
-      getStatus() const override
-      {
-        return NOX::StatusTest::Unconverged;
-      }
-
-      std::ostream &
-      print(std::ostream &stream, int indent = 0) const override
-      {
-        return stream << std::string(indent, ' ') << "tangent reuse monitor\n";
-      }
-
-    private:
-      NewtonSolver::TangentState &tangent;
-    };
   } // namespace
 
 
@@ -502,6 +476,11 @@ namespace clothsim
 
     // Converged when ||F|| < absolute or < relative * ||F(u_0)||; failed on NaN or too
     // many iterations.
+    // Full Newton's tangents come with Φ at the line search's accepted points.
+    context.speculate =
+      parameters.method == NewtonMethod::full && parameters.tangent != "adaptive";
+    problem.speculate_tangents(context.speculate ? &tangent_matrix : nullptr,
+                               parameters.tangent == "projected");
     group->computeF();
     const double initial_norm   = group->getNormF();
     const double tolerance      = std::max(parameters.absolute_tolerance,
@@ -511,6 +490,7 @@ namespace clothsim
     converged->addStatusTest(residual_small);
     const double step_tolerance =
       std::max(parameters.displacement_tolerance, minimum_displacement_tolerance);
+    context.step_tolerance = step_tolerance;
     if (step_tolerance > 0. || parameters.truncation_error_fraction > 0.)
       converged->addStatusTest(Teuchos::rcp(new SmallFullStep(step_tolerance, context)));
     auto max_iterations = Teuchos::rcp(
@@ -559,6 +539,7 @@ namespace clothsim
     const auto &final_group =
       dynamic_cast<const NOX::Epetra::Group &>(solver->getSolutionGroup());
     copy(epetra(final_group.getX()), u);
+    problem.speculate_tangents(nullptr, false);
     result.iterations          = solver->getNumIterations();
     result.linear_iterations   = context.linear_iterations;
     result.projected_fallbacks = context.projected_fallbacks;

@@ -46,6 +46,16 @@ namespace clothsim
             TrilinosWrappers::SparseMatrix      &J,
             const bool                           projected) = 0;
 
+    // From now on (until called with nullptr) an objective() or residual() at a new
+    // point may assemble the tangent there too, into J (projected or not), and a
+    // tangent() asked at that point finds it done. Full Newton's next tangent is at the
+    // line search's accepted point, where the objective was just evaluated: one element
+    // loop instead of two. J's content is the problem's from then on. The default does
+    // not do it.
+    virtual void
+    speculate_tangents(TrilinosWrappers::SparseMatrix * /*J*/, bool /*projected*/)
+    {}
+
     // The largest step α <= 1 along `direction` from u that the line search may try
     // (e.g. no contact crossed). Collective.
     virtual double

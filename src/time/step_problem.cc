@@ -72,9 +72,7 @@ namespace clothsim
       }
     // A second tangent at the same point (the adaptive tangent's projected retry)
     // linearises from the same point as the first.
-    scratch = x;
-    scratch -= tangent_points[node];
-    if (scratch.linfty_norm() != 0.)
+    if (new_tangent_point(node, x))
       {
         earlier_tangent_points[node] = tangent_points[node];
         tangent_points[node]         = x;
@@ -83,6 +81,52 @@ namespace clothsim
     terms.linearised_from = &linearised_from;
     model.assemble(ghosted, terms, nullptr, &J);
     terms.linearised_from = nullptr;
+  }
+
+
+  bool
+  StepProblem::new_tangent_point(const unsigned int node, const VectorType &x)
+  {
+    scratch = x;
+    scratch -= tangent_points[node];
+    return scratch.linfty_norm() != 0.;
+  }
+
+
+  void
+  StepProblem::speculate_tangents(MatrixType *J, const bool projected)
+  {
+    speculative_matrix      = path_start == nullptr && !model.caps_steps()
+                                ? J
+                                : static_cast<MatrixType *>(nullptr);
+    speculative_projected   = projected;
+    tangent_at_cached_point = false;
+  }
+
+
+  double
+  StepProblem::assemble_at(const VectorType &u, VectorType &gradient)
+  {
+    model.import_ghosts(u, ghosted);
+    cached_point            = u;
+    cached                  = true;
+    tangent_at_cached_point = false;
+    if (speculative_matrix == nullptr)
+      return model.assemble(ghosted, terms, &gradient, nullptr);
+    // The tangent as tangent() would assemble it at u; the tangent points move only
+    // when it is asked for.
+    terms.projected_tangent = speculative_projected;
+    if (!tangent_points.empty())
+      {
+        model.import_ghosts(new_tangent_point(0, u) ? tangent_points[0]
+                                                    : earlier_tangent_points[0],
+                            linearised_from);
+        terms.linearised_from = &linearised_from;
+      }
+    const double energy   = model.assemble(ghosted, terms, &gradient, speculative_matrix);
+    terms.linearised_from = nullptr;
+    tangent_at_cached_point = true;
+    return energy;
   }
 
 
@@ -131,12 +175,9 @@ namespace clothsim
       {
         if (!at_cached_point(u))
           {
-            model.import_ghosts(u, ghosted);
             if (cached_gradient.size() == 0)
               model.initialize_owned(cached_gradient);
-            cached_energy = model.assemble(ghosted, terms, &cached_gradient, nullptr);
-            cached_point  = u;
-            cached        = true;
+            cached_energy = assemble_at(u, cached_gradient);
           }
         return cached_energy;
       }
@@ -166,11 +207,8 @@ namespace clothsim
       {
         if (!at_cached_point(u))
           {
-            model.import_ghosts(u, ghosted);
-            cached_energy   = model.assemble(ghosted, terms, &F, nullptr);
-            cached_point    = u;
+            cached_energy   = assemble_at(u, F);
             cached_gradient = F;
-            cached          = true;
             return;
           }
         F = cached_gradient;
@@ -192,6 +230,20 @@ namespace clothsim
     terms.projected_tangent = projected;
     if (path_start == nullptr)
       {
+        if (tangent_at_cached_point && &J == speculative_matrix &&
+            projected == speculative_projected && at_cached_point(u))
+          {
+            // Assembled with Φ at u (speculate_tangents): the tangent points move as
+            // assemble_tangent would have moved them.
+            if (!tangent_points.empty() && new_tangent_point(0, u))
+              {
+                earlier_tangent_points[0] = tangent_points[0];
+                tangent_points[0]         = u;
+              }
+            tangent_at_cached_point = false;
+            return;
+          }
+        tangent_at_cached_point = false; // J is overwritten
         model.import_ghosts(u, ghosted);
         assemble_tangent(0, u, J);
         return;

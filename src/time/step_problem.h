@@ -54,6 +54,11 @@ namespace clothsim
     void
     tangent(const VectorType &u, MatrixType &J, const bool projected) override;
 
+    // Not along the AVF path (two tangents per point), nor where the line search is
+    // capped (contact: Φ may be infinite at a trial point).
+    void
+    speculate_tangents(MatrixType *J, bool projected) override;
+
     // The model's cap on the line search (contact), the obstacles at the step's time.
     double
     largest_step(const VectorType &u, const VectorType &direction) override;
@@ -67,7 +72,8 @@ namespace clothsim
     void
     forget_cached_values()
     {
-      cached = false;
+      cached                  = false;
+      tangent_at_cached_point = false;
     }
 
     // Newton's second step test: ratio(update, u), the update over what the step
@@ -90,6 +96,16 @@ namespace clothsim
     // AVF's 0 and 1).
     void
     assemble_tangent(unsigned int node, const VectorType &x, MatrixType &J);
+
+    // Φ at u (owned) and its gradient into `gradient`, and the tangent there too if
+    // speculate_tangents() asked; u becomes the cached point.
+    double
+    assemble_at(const VectorType &u, VectorType &gradient);
+
+    // Whether x is not the last tangent's point of node `node` (mixed-stress tangent):
+    // a tangent at x linearises from that point, else from the one before it.
+    bool
+    new_tangent_point(unsigned int node, const VectorType &x);
 
     // Whether objective() and residual() have Φ and its gradient at u (collective).
     bool
@@ -119,5 +135,10 @@ namespace clothsim
     VectorType cached_point, cached_gradient;
     double     cached_energy = 0.;
     bool       cached        = false;
+    // speculate_tangents(): the matrix, and whether it holds the tangent at the cached
+    // point (not yet asked for).
+    MatrixType *speculative_matrix      = nullptr;
+    bool        speculative_projected   = false;
+    bool        tangent_at_cached_point = false;
   };
 } // namespace clothsim
