@@ -96,9 +96,7 @@ namespace clothsim
   void
   StepProblem::speculate_tangents(MatrixType *J, const bool projected)
   {
-    speculative_matrix      = path_start == nullptr && !model.caps_steps()
-                                ? J
-                                : static_cast<MatrixType *>(nullptr);
+    speculative_matrix = path_start == nullptr ? J : static_cast<MatrixType *>(nullptr);
     speculative_projected   = projected;
     tangent_at_cached_point = false;
   }

@@ -54,8 +54,8 @@ namespace clothsim
     void
     tangent(const VectorType &u, MatrixType &J, const bool projected) override;
 
-    // Not along the AVF path (two tangents per point), nor where the line search is
-    // capped (contact: Φ may be infinite at a trial point).
+    // Not along the AVF path (two tangents per point). With contact the line search's
+    // step cap keeps its points admissible, so Φ and the tangent there are finite.
     void
     speculate_tangents(MatrixType *J, bool projected) override;
 
