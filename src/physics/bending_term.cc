@@ -58,14 +58,7 @@ namespace clothsim::physics
                                              step.projected_tangent,
                                              g,
                                              hessian != nullptr ? &H : nullptr);
-    // Each sum in a loop of its own (the tests hoisted: GCC's -O2 does not).
-    if (gradient != nullptr)
-      for (unsigned int i = 0; i < 12; ++i)
-        (*gradient)[i] += g[i];
-    if (hessian != nullptr)
-      for (unsigned int i = 0; i < 12; ++i)
-        for (unsigned int j = 0; j < 12; ++j)
-          (*hessian)[i][j] += H[i][j];
+    add_to_element(g, H, gradient, hessian);
   }
 
 

@@ -52,14 +52,7 @@ namespace clothsim::physics
                                               g,
                                               hessian != nullptr ? &H : nullptr,
                                               element.linearised_from);
-    // Each sum in a loop of its own (the tests hoisted: GCC's -O2 does not).
-    if (gradient != nullptr)
-      for (unsigned int i = 0; i < 9; ++i)
-        (*gradient)[i] += g[i];
-    if (hessian != nullptr)
-      for (unsigned int i = 0; i < 9; ++i)
-        for (unsigned int j = 0; j < 9; ++j)
-          (*hessian)[i][j] += H[i][j];
+    add_to_element(g, H, gradient, hessian);
   }
 
 

@@ -78,6 +78,25 @@ namespace clothsim::physics
   using LocalVector = BendingVector;
   using LocalMatrix = BendingMatrix;
 
+  // Adds a kernel's gradient g and Hessian H over the first n local unknowns to the
+  // element's sums (either may be null), each in a loop of its own (GCC's -O2 does not
+  // hoist the tests out of a shared one).
+  template <std::size_t n>
+  void
+  add_to_element(const std::array<double, n>                &g,
+                 const std::array<std::array<double, n>, n> &H,
+                 LocalVector                                *gradient,
+                 LocalMatrix                                *hessian)
+  {
+    if (gradient != nullptr)
+      for (std::size_t i = 0; i < n; ++i)
+        (*gradient)[i] += g[i];
+    if (hessian != nullptr)
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j)
+          (*hessian)[i][j] += H[i][j];
+  }
+
   // One triangle as the element terms see it in the cell loop.
   struct ElementState
   {
