@@ -474,13 +474,14 @@ namespace clothsim
     // the Eisenstat–Walker forcing term.
     group->disableLinearResidualComputation(parameters.method != NewtonMethod::inexact);
 
-    // Converged when ||F|| < absolute or < relative * ||F(u_0)||; failed on NaN or too
-    // many iterations.
     // Full Newton's tangents come with Φ at the line search's accepted points.
     context.speculate =
       parameters.method == NewtonMethod::full && parameters.tangent != "adaptive";
     problem.speculate_tangents(context.speculate ? &tangent_matrix : nullptr,
                                parameters.tangent == "projected");
+
+    // Converged when ||F|| < absolute or < relative * ||F(u_0)||; failed on NaN or too
+    // many iterations.
     group->computeF();
     const double initial_norm   = group->getNormF();
     const double tolerance      = std::max(parameters.absolute_tolerance,
