@@ -5,11 +5,20 @@
 // single (default) or double precision, on the pattern of the swinging sheet's tangent:
 // an N x N-vertex square with alternating diagonals, each triangle coupling its three
 // vertices' three displacements and its three edges' unknowns (a 12 x 12 element matrix),
-// ordered by METIS' nested dissection. The values are a diagonally dominant symmetric
-// matrix (the cost does not depend on them). The two are timed in alternating passes and
-// each one's fastest pass is reported with their ratio, measured in this one run.
+// in a fill-reducing order. The values are a diagonally dominant symmetric matrix (the
+// cost does not depend on them). The two are timed in alternating passes and each one's
+// fastest pass is reported with their ratio, measured in this one run.
 //
 //   build/tests/factor_benchmark [N, default 81] [passes, default 40] [single | double]
+//                                [order, default metis]
+//
+// order: `metis` (METIS' nested dissection of the unknowns' graph), `metis:U:S` (with
+// UFACTOR U and seed S, either may be empty), `vertex:U:S` (METIS on the graph of the N²
+// vertices, each edge's unknown right after the first of its two vertices), or `pord`
+// (MUMPS' PORD, as clothsim orders on one rank). The order's operations, and the time
+// taken to order and analyse, are printed first; with 0 passes nothing else.
+
+#include <deal.II/base/mpi.h>
 
 #include "solvers/blas_kernels.h"
 #include "solvers/fill_reducing_order.h"
@@ -22,6 +31,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <utility>
@@ -32,14 +42,30 @@ using namespace clothsim;
 int
 main(int argc, char **argv)
 {
-  const int         N         = argc > 1 ? std::atoi(argv[1]) : 81;
-  const int         passes    = argc > 2 ? std::atoi(argv[2]) : 40;
-  const std::string precision = argc > 3 ? argv[3] : "single";
-  if (N < 3 || passes < 1 || (precision != "single" && precision != "double"))
+  const int         N          = argc > 1 ? std::atoi(argv[1]) : 81;
+  const int         passes     = argc > 2 ? std::atoi(argv[2]) : 40;
+  const std::string precision  = argc > 3 ? argv[3] : "single";
+  const std::string order_name = argc > 4 ? argv[4] : "metis";
+  // The order's kind and its METIS options from "kind:U:S".
+  const std::string       kind = order_name.substr(0, order_name.find(':'));
+  NestedDissectionOptions metis_options;
+  {
+    std::string rest =
+      order_name.size() > kind.size() ? order_name.substr(kind.size() + 1) : "";
+    const std::string::size_type colon = rest.find(':');
+    const std::string            u     = rest.substr(0, colon),
+                      seed  = colon == std::string::npos ? "" : rest.substr(colon + 1);
+    metis_options.imbalance = u.empty() ? 0 : std::atoi(u.c_str());
+    metis_options.seed      = seed.empty() ? -1 : std::atoi(seed.c_str());
+  }
+  if (N < 3 || passes < 0 || (precision != "single" && precision != "double") ||
+      (kind != "metis" && kind != "vertex" && kind != "pord"))
     {
-      std::cerr << "usage: factor_benchmark [N >= 3] [passes >= 1] [single | double]\n";
+      std::cerr << "usage: factor_benchmark [N >= 3] [passes >= 0] [single | double] "
+                   "[metis[:U:S] | vertex[:U:S] | pord]\n";
       return 2;
     }
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1); // PORD runs in MUMPS
   select_blas_kernels();
 
   // Unknowns: 3 per vertex, then 1 per edge (numbered as met).
@@ -107,19 +133,66 @@ main(int argc, char **argv)
       values.push_back(value);
     }
 
-  const auto order = nested_dissection_order(n, rows, columns);
+  const auto seconds_since = [](const std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+      .count();
+  };
+  auto                            start = std::chrono::steady_clock::now();
+  std::optional<std::vector<int>> order;
+  if (kind == "pord")
+    order = fill_reducing_order(n, rows, columns, 4);
+  else if (kind == "metis")
+    order = nested_dissection_order(n, rows, columns, metis_options);
+  else
+    {
+      // The vertices' graph (its upper triangle, each edge once), ordered; then each
+      // vertex's displacements, each followed by the edges whose earlier vertex it is.
+      std::vector<int> vertex_rows, vertex_columns;
+      for (const auto &[key, dof] : edges)
+        {
+          vertex_rows.push_back(key.first);
+          vertex_columns.push_back(key.second);
+        }
+      const auto vertex_order =
+        nested_dissection_order(N * N, vertex_rows, vertex_columns, metis_options);
+      if (vertex_order)
+        {
+          std::vector<int> position(N * N);
+          for (int p = 0; p < N * N; ++p)
+            position[(*vertex_order)[p]] = p;
+          std::vector<std::vector<int>> edges_after(N * N);
+          for (const auto &[key, dof] : edges)
+            edges_after[position[key.first] < position[key.second] ? key.first
+                                                                   : key.second]
+              .push_back(dof);
+          order.emplace();
+          for (const int v : *vertex_order)
+            {
+              for (int d = 0; d < 3; ++d)
+                order->push_back(3 * v + d);
+              order->insert(order->end(), edges_after[v].begin(), edges_after[v].end());
+            }
+        }
+    }
+  const double ordering_seconds = seconds_since(start);
   if (!order)
     {
-      std::cerr << "factor_benchmark: METIS failed\n";
+      std::cerr << "factor_benchmark: ordering failed\n";
       return 1;
     }
   const bool         single = precision == "single";
   SupernodalCholesky written_out(single), blas(single, /*blas_panels=*/true);
+  start = std::chrono::steady_clock::now();
   written_out.analyse(n, rows, columns, *order);
+  const double analysis_seconds = seconds_since(start);
+  std::cout << "N = " << N << ": " << n << " unknowns, order " << order_name << " ("
+            << ordering_seconds << " s, analysis " << analysis_seconds << " s), "
+            << written_out.n_supernodes() << " supernodes, " << written_out.operations()
+            << " operations, " << written_out.factor_entries()
+            << " entries in the factor\n";
+  if (passes == 0)
+    return 0;
   blas.analyse(n, rows, columns, *order);
-  std::cout << "N = " << N << ": " << n << " unknowns, " << written_out.n_supernodes()
-            << " supernodes, " << written_out.operations() << " operations, "
-            << written_out.factor_entries() << " entries in the factor\n";
   if (!written_out.writes_out_panels())
     {
       std::cout
@@ -130,10 +203,6 @@ main(int argc, char **argv)
   // Each pass: a factorisation, then a solve with its factors, for each kind in turn;
   // and for the written-out panels both at once (factorize with the right-hand side,
   // then finish_solve), which must give the same bits.
-  const auto seconds_since = [](const std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-      .count();
-  };
   double              best_factor[2] = {1e30, 1e30}, best_solve[2] = {1e30, 1e30};
   double              best_fused = 1e30;
   std::vector<double> x[2];
@@ -141,7 +210,7 @@ main(int argc, char **argv)
     for (int which = 0; which < 2; ++which)
       {
         SupernodalCholesky &cholesky = which == 0 ? written_out : blas;
-        auto                start    = std::chrono::steady_clock::now();
+        start                        = std::chrono::steady_clock::now();
         if (!cholesky.factorize(values.data()))
           {
             std::cerr << "factor_benchmark: factorisation failed\n";

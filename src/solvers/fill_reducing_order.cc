@@ -54,9 +54,10 @@ namespace clothsim
 
 
   std::optional<std::vector<int>>
-  nested_dissection_order(const int               n,
-                          const std::vector<int> &rows,
-                          const std::vector<int> &columns)
+  nested_dissection_order(const int                      n,
+                          const std::vector<int>        &rows,
+                          const std::vector<int>        &columns,
+                          const NestedDissectionOptions &choices)
   {
     // The graph: each row's neighbours, both ways, without the diagonal.
     std::vector<idx_t> start(n + 2, 0);
@@ -81,6 +82,9 @@ namespace clothsim
     idx_t              options[METIS_NOPTIONS];
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_NUMBERING] = 0;
+    if (choices.imbalance > 0)
+      options[METIS_OPTION_UFACTOR] = choices.imbalance;
+    options[METIS_OPTION_SEED] = choices.seed;
     if (n > 0 && METIS_NodeND(&n_vertices,
                               start.data(),
                               neighbours.data(),

@@ -20,13 +20,26 @@ namespace clothsim
                       const std::vector<int> &columns,
                       int                     ordering);
 
-  // order[p] is the row eliminated p-th by METIS' nested dissection (METIS_NodeND,
-  // default options: Karypis & Kumar, SIAM J. Sci. Comput. 20, 1998) of the same
-  // pattern. Nothing if METIS fails.
+  // Options of METIS' nested dissection that change the order's cost by 10 to 20 % on
+  // the swinging sheet's pattern (README, "Several ranks: substructuring").
+  struct NestedDissectionOptions
+  {
+    // How much larger than half of a part one side of a separator may be, in
+    // thousandths (METIS_OPTION_UFACTOR); 0: METIS' default (200).
+    int imbalance = 0;
+    // The random seed of METIS' matchings and refinements (METIS_OPTION_SEED); -1:
+    // METIS' default.
+    int seed = -1;
+  };
+
+  // order[p] is the row eliminated p-th by METIS' nested dissection (METIS_NodeND:
+  // Karypis & Kumar, SIAM J. Sci. Comput. 20, 1998) of the same pattern. Nothing if
+  // METIS fails.
   std::optional<std::vector<int>>
-  nested_dissection_order(int                     n,
-                          const std::vector<int> &rows,
-                          const std::vector<int> &columns);
+  nested_dissection_order(int                            n,
+                          const std::vector<int>        &rows,
+                          const std::vector<int>        &columns,
+                          const NestedDissectionOptions &options = {});
 
   // The same for a pattern distributed over the ranks (collective): `rows` and
   // `columns` (1-based) hold this rank's entries of one triangle. Rank 0 gathers them
