@@ -3,10 +3,8 @@
 // written-out panels and substitutions (solvers/panel_cholesky.h) against the same with
 // LAPACK's potrf, BLAS' trsm and (in the solve) BLAS' trsv and gemv, in
 // single (default) or double precision, on the pattern of the swinging sheet's tangent:
-// an N x N-vertex square with alternating diagonals, each triangle coupling its three
-// vertices' three displacements and its three edges' unknowns (a 12 x 12 element matrix),
-// in a fill-reducing order. The values are a diagonally dominant symmetric matrix (the
-// cost does not depend on them). The two are timed in alternating passes and each one's
+// tests/sheet_pattern.h (the cost does not depend on the values), in a fill-reducing
+// order. The two are timed in alternating passes and each one's
 // fastest pass is reported with their ratio, measured in this one run.
 //
 //   build/tests/factor_benchmark [N, default 81] [passes, default 40] [single | double]
@@ -14,7 +12,7 @@
 //
 // order: `metis` (METIS' nested dissection of the unknowns' graph), `metis:U:S` (with
 // UFACTOR U and seed S, either may be empty), `vertex:U:S` (METIS on the graph of the N²
-// vertices, each edge's unknown right after the first of its two vertices), or `pord`
+// vertices: vertex_nested_dissection_order), or `pord`
 // (MUMPS' PORD, as clothsim orders on one rank). The order's operations, and the time
 // taken to order and analyse, are printed first; with 0 passes nothing else.
 
@@ -23,6 +21,9 @@
 #include "solvers/blas_kernels.h"
 #include "solvers/fill_reducing_order.h"
 #include "solvers/supernodal_cholesky.h"
+#include "solvers/vertex_order.h"
+
+#include "sheet_pattern.h"
 
 #include <algorithm>
 #include <array>
@@ -30,9 +31,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
-#include <map>
 #include <optional>
-#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -68,70 +67,10 @@ main(int argc, char **argv)
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1); // PORD runs in MUMPS
   select_blas_kernels();
 
-  // Unknowns: 3 per vertex, then 1 per edge (numbered as met).
-  const auto                         vertex = [N](int i, int j) { return i + N * j; };
-  std::map<std::pair<int, int>, int> edges;
-  const int                          n_vertex_unknowns = 3 * N * N;
-  const auto                         edge              = [&](int a, int b) {
-    const auto key = std::minmax(a, b);
-    const auto it =
-      edges.emplace(key, n_vertex_unknowns + static_cast<int>(edges.size()));
-    return it.first->second;
-  };
-  std::vector<std::array<int, 12>> elements;
-  for (int j = 0; j + 1 < N; ++j)
-    for (int i = 0; i + 1 < N; ++i)
-      {
-        const int v00 = vertex(i, j), v10 = vertex(i + 1, j), v01 = vertex(i, j + 1),
-                  v11 = vertex(i + 1, j + 1);
-        // Alternating diagonals, as meshes/swing-N.geo.
-        const bool               diagonal_up = (i + j) % 2 == 0;
-        const std::array<int, 3> first       = {{v00, v10, diagonal_up ? v11 : v01}},
-                                 second      = {{diagonal_up ? v00 : v10, v11, v01}};
-        for (const auto &t : {first, second})
-          {
-            std::array<int, 12> dofs;
-            for (int a = 0; a < 3; ++a)
-              for (int d = 0; d < 3; ++d)
-                dofs[3 * a + d] = 3 * t[a] + d;
-            for (int a = 0; a < 3; ++a)
-              dofs[9 + a] = edge(t[(a + 1) % 3], t[(a + 2) % 3]);
-            elements.push_back(dofs);
-          }
-      }
-  const int n = n_vertex_unknowns + static_cast<int>(edges.size());
-
-  // The upper triangle: off-diagonal entries in [-1, 0), each diagonal entry 1 + 1e-4
-  // times the absolute sum of its row (diagonally dominant, so SPD). The excess is about
-  // the swinging sheet's mass term against its stiffness: with more (1 + the sum, say),
-  // the factor's entries decay with the distance in the mesh to below single
-  // precision's normal range at N = 321 (unflushed, those denormals made a factorisation
-  // 14 times slower; solvers/flush_denormals.h now flushes them).
-  std::map<std::pair<int, int>, double>  upper;
-  std::mt19937                           random(2026);
-  std::uniform_real_distribution<double> entry(-1., 0.);
-  for (const auto &dofs : elements)
-    for (int a = 0; a < 12; ++a)
-      for (int b = a + 1; b < 12; ++b)
-        upper[std::minmax(dofs[a], dofs[b])] += entry(random);
-  std::vector<double> diagonal(n, 0.);
-  for (const auto &[key, value] : upper)
-    {
-      diagonal[key.first] -= value;
-      diagonal[key.second] -= value;
-    }
-  for (double &d : diagonal)
-    d *= 1. + 1e-4;
-  std::vector<int>    rows, columns;
-  std::vector<double> values;
-  for (int i = 0; i < n; ++i)
-    upper[{i, i}] = diagonal[i];
-  for (const auto &[key, value] : upper)
-    {
-      rows.push_back(key.first);
-      columns.push_back(key.second);
-      values.push_back(value);
-    }
+  const test::SheetPattern   sheet = test::sheet_pattern(N, 2026);
+  const int                  n     = sheet.n;
+  const std::vector<int>    &rows = sheet.rows, &columns = sheet.columns;
+  const std::vector<double> &values = sheet.values;
 
   const auto seconds_since = [](const std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
@@ -144,36 +83,8 @@ main(int argc, char **argv)
   else if (kind == "metis")
     order = nested_dissection_order(n, rows, columns, metis_options);
   else
-    {
-      // The vertices' graph (its upper triangle, each edge once), ordered; then each
-      // vertex's displacements, each followed by the edges whose earlier vertex it is.
-      std::vector<int> vertex_rows, vertex_columns;
-      for (const auto &[key, dof] : edges)
-        {
-          vertex_rows.push_back(key.first);
-          vertex_columns.push_back(key.second);
-        }
-      const auto vertex_order =
-        nested_dissection_order(N * N, vertex_rows, vertex_columns, metis_options);
-      if (vertex_order)
-        {
-          std::vector<int> position(N * N);
-          for (int p = 0; p < N * N; ++p)
-            position[(*vertex_order)[p]] = p;
-          std::vector<std::vector<int>> edges_after(N * N);
-          for (const auto &[key, dof] : edges)
-            edges_after[position[key.first] < position[key.second] ? key.first
-                                                                   : key.second]
-              .push_back(dof);
-          order.emplace();
-          for (const int v : *vertex_order)
-            {
-              for (int d = 0; d < 3; ++d)
-                order->push_back(3 * v + d);
-              order->insert(order->end(), edges_after[v].begin(), edges_after[v].end());
-            }
-        }
-    }
+    order = vertex_nested_dissection_order(
+      n, rows, columns, sheet.vertices, sheet.n_vertices, metis_options);
   const double ordering_seconds = seconds_since(start);
   if (!order)
     {

@@ -119,7 +119,12 @@ namespace clothsim
   {
     std::vector<ReferenceTriangle> triangles;
     for (const auto &element : discretization.elements())
-      triangles.push_back({element.reference, element.dofs, element.area});
+      triangles.push_back({element.reference,
+                           element.dofs,
+                           element.area,
+                           discretization.has_directors()
+                             ? element.angle_dofs
+                             : std::array<types::global_dof_index, 3>{}});
     return make_near_null_space(triangles,
                                 discretization.owned_dofs(),
                                 discretization.relevant_dofs(),

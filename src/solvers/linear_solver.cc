@@ -69,6 +69,9 @@ namespace clothsim
                 parameters.factor_precision == "single"
                   ? MumpsFactorization::Precision::single_refined
                   : MumpsFactorization::Precision::double_precision);
+              if (!near_null_space.mesh_dofs.empty())
+                mumps->set_mesh_unknowns(near_null_space.mesh_dofs,
+                                         near_null_space.mesh_vertices);
             };
             if (!mumps)
               make(definite ? MumpsFactorization::Symmetry::positive_definite

@@ -15,6 +15,7 @@
 #include <Amesos_BaseSolver.h>
 #include <Epetra_LinearProblem.h>
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -33,6 +34,11 @@ namespace clothsim
     // displacement dofs, and the tangent's owned and relevant dofs. AMG then works on
     // the displacement block alone (BlockPreconditioner).
     IndexSet displacement_dofs, owned_dofs, relevant_dofs;
+    // The owned unknowns on the mesh (increasing) and each one's vertex, or its edge's
+    // two vertices (a vertex named by its first displacement dof), for the direct
+    // solver's order (MumpsFactorization::set_mesh_unknowns); empty if not known.
+    std::vector<types::global_dof_index>                mesh_dofs;
+    std::vector<std::array<types::global_dof_index, 2>> mesh_vertices;
   };
 
   class LinearSolver

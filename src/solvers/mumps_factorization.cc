@@ -5,6 +5,7 @@
 #include "solvers/flush_denormals.h"
 #include "solvers/subdomain_cholesky.h"
 #include "solvers/supernodal_cholesky.h"
+#include "solvers/vertex_order.h"
 
 #include <dmumps_c.h>
 #include <smumps_c.h>
@@ -541,7 +542,7 @@ namespace clothsim
     if (n_ranks == 1 || !definite)
       return true;
     subdomains = std::make_unique<SubdomainCholesky>(communicator, instance->single);
-    if (subdomains->analyse(matrix))
+    if (subdomains->analyse(matrix, mesh_dofs, mesh_vertices))
       return true;
     last_failure = subdomains->failure();
     return false;
@@ -576,8 +577,7 @@ namespace clothsim
         pattern_rows[k]    = rows[k] - 1;
         pattern_columns[k] = columns[k] - 1;
       }
-    // Each entry's position in the matrix's value array (its rows stored one after
-    // the other: StorageOptimized).
+    // Each entry's place in the matrix's value array (StorageOptimized: rows in turn).
     std::vector<int> value_index;
     value_index.reserve(rows.size());
     for (std::size_t entry = 0; entry < upper.size(); ++entry)
@@ -585,5 +585,16 @@ namespace clothsim
         value_index.push_back(static_cast<int>(entry));
     cholesky = std::make_unique<SupernodalCholesky>(instance->single);
     cholesky->analyse(n_kept, pattern_rows, pattern_columns, order, value_index);
+    if (mesh_dofs != nullptr)
+      prefer_vertex_order(cholesky,
+                          instance->single,
+                          n_kept,
+                          pattern_rows,
+                          pattern_columns,
+                          value_index,
+                          matrix.RowMap(),
+                          kept_rows,
+                          *mesh_dofs,
+                          *mesh_vertices);
   }
 } // namespace clothsim

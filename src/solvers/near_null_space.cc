@@ -52,7 +52,37 @@ namespace clothsim
                   modes[3][i] = rotation[c];
               }
         }
-    NearNullSpace space{modes, 3u, IndexSet(), IndexSet(), IndexSet()};
+    NearNullSpace space{modes, 3u, IndexSet(), IndexSet(), IndexSet(), {}, {}};
+    {
+      // Each owned unknown's vertex (its vertex's first dof) or edge.
+      std::vector<
+        std::pair<types::global_dof_index, std::array<types::global_dof_index, 2>>>
+        on_mesh;
+      for (const ReferenceTriangle &triangle : triangles)
+        for (unsigned int v = 0; v < 3; ++v)
+          {
+            const types::global_dof_index vertex = triangle.dofs[3 * v];
+            for (unsigned int c = 0; c < 3; ++c)
+              if (owned_dofs.is_element(triangle.dofs[3 * v + c]))
+                on_mesh.push_back({triangle.dofs[3 * v + c], {{vertex, vertex}}});
+            if (other_unknowns && owned_dofs.is_element(triangle.angle_dofs[v]))
+              on_mesh.push_back(
+                {triangle.angle_dofs[v],
+                 {{triangle.dofs[3 * ((v + 1) % 3)], triangle.dofs[3 * ((v + 2) % 3)]}}});
+          }
+      std::sort(on_mesh.begin(), on_mesh.end());
+      on_mesh.erase(std::unique(on_mesh.begin(),
+                                on_mesh.end(),
+                                [](const auto &a, const auto &b) {
+                                  return a.first == b.first;
+                                }),
+                    on_mesh.end());
+      for (const auto &[dof, vertices] : on_mesh)
+        {
+          space.mesh_dofs.push_back(dof);
+          space.mesh_vertices.push_back(vertices);
+        }
+    }
     if (other_unknowns)
       {
         // Displacements and other unknowns interleave: AMG gets the displacement block.

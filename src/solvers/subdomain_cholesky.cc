@@ -6,6 +6,7 @@
 #include "solvers/dense_kernels.h"
 #include "solvers/fill_reducing_order.h"
 #include "solvers/flush_denormals.h"
+#include "solvers/vertex_order.h"
 
 #include <Epetra_Import.h>
 #include <Epetra_IntVector.h>
@@ -43,7 +44,10 @@ namespace clothsim
 
 
   bool
-  SubdomainCholesky::analyse(const Epetra_CrsMatrix &matrix)
+  SubdomainCholesky::analyse(
+    const Epetra_CrsMatrix                                            &matrix,
+    const std::vector<dealii::types::global_dof_index>                *mesh_dofs,
+    const std::vector<std::array<dealii::types::global_dof_index, 2>> *mesh_vertices)
   {
     int rank = 0;
     MPI_Comm_rank(communicator, &rank);
@@ -147,8 +151,23 @@ namespace clothsim
       }
 
     // The interior in a fill-reducing order, the separator last.
-    const auto interior_order =
-      nested_dissection_order(n_interior, interior_pattern[0], interior_pattern[1]);
+    std::optional<std::vector<int>> interior_order;
+    if (mesh_dofs != nullptr)
+      {
+        std::vector<dealii::types::global_dof_index> interior_dofs(n_interior);
+        for (int i = 0; i < n_interior; ++i)
+          interior_dofs[i] = row_map.GID64(interior_rows[i]);
+        if (const auto vertices = rows_on_mesh(interior_dofs, *mesh_dofs, *mesh_vertices))
+          interior_order = vertex_nested_dissection_order(n_interior,
+                                                          interior_pattern[0],
+                                                          interior_pattern[1],
+                                                          vertices->first,
+                                                          vertices->second,
+                                                          {500, -1});
+      }
+    if (!interior_order)
+      interior_order =
+        nested_dissection_order(n_interior, interior_pattern[0], interior_pattern[1]);
     if (!io::on_all_ranks(interior_order.has_value(), communicator))
       {
         last_failure = "METIS' nested dissection of a rank's interior failed";

@@ -7,7 +7,8 @@
 // directly. The rows a rank owns that couple to a row of a higher rank form the
 // separator S; a rank's other rows (its interior I_r) then couple only to its own rows
 // and to S. Each rank factorises A_{I_r I_r} with its own SupernodalCholesky (METIS
-// orders it) and forms its share of the Schur complement
+// orders it, by the mesh's vertices where it can: solvers/vertex_order.h) and forms its
+// share of the Schur complement
 //   C = A_SS - Σ_r A_{S I_r} A_{I_r I_r}⁻¹ A_{I_r S},
 // which one reduction sums on every rank; each factorises C densely (LAPACK). A solve
 // substitutes forward through each rank's interior, sums the separator's right-hand
@@ -15,12 +16,15 @@
 // in all. All but C's factorisation runs in parallel; C's order is about the length of
 // the ranks' interface, in degrees of freedom.
 
+#include <deal.II/base/types.h>
+
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Vector.h>
 #include <mpi.h>
 
 #include "solvers/supernodal_cholesky.h"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -33,9 +37,15 @@ namespace clothsim
     SubdomainCholesky(MPI_Comm communicator, bool single_precision);
 
     // Finds the separator and analyses the sparsity of `matrix` (collective; its storage
-    // optimised, its sparsity symmetric). False with failure() set otherwise.
+    // optimised, its sparsity symmetric). False with failure() set otherwise. Each
+    // interior is ordered by METIS' nested dissection: of its vertices if every row is
+    // on the mesh (`mesh_dofs` and `mesh_vertices` as NearNullSpace's, or null;
+    // vertex_nested_dissection_order, UFACTOR = 500), else of its rows.
     bool
-    analyse(const Epetra_CrsMatrix &matrix);
+    analyse(
+      const Epetra_CrsMatrix                                            &matrix,
+      const std::vector<dealii::types::global_dof_index>                *mesh_dofs,
+      const std::vector<std::array<dealii::types::global_dof_index, 2>> *mesh_vertices);
 
     // Factorises `matrix` (collective; the sparsity analysed), reading its value array in
     // place. False with failure() set if it is not positive definite.
