@@ -45,6 +45,10 @@ namespace clothsim
   {
   public:
     LinearSolver(const LinearSolverParameters &parameters, NearNullSpace near_null_space);
+    // Not copied or moved: the direct solver keeps references into near_null_space.
+    LinearSolver(const LinearSolver &) = delete;
+    LinearSolver &
+    operator=(const LinearSolver &) = delete;
 
     // Builds the preconditioner for `matrix` (call after every new tangent). `rhs`: the
     // right-hand side of the next solve(), if known; the direct solver's Cholesky then

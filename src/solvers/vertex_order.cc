@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <tuple>
 
 namespace clothsim
 {
@@ -14,18 +13,67 @@ namespace clothsim
                                  const int                              n_vertices,
                                  const NestedDissectionOptions         &options)
   {
-    // The vertices' graph: each pair once, the smaller vertex first.
-    std::vector<std::pair<int, int>> pairs;
+    // Each row's neighbours, both ways (the pattern holds one triangle), and each
+    // vertex's rows: compressed lists.
+    const auto compress = [](const int                               size,
+                             const std::vector<std::pair<int, int>> &items,
+                             std::vector<int>                       &start,
+                             std::vector<int>                       &list) {
+      start.assign(size + 1, 0);
+      for (const auto &[owner, item] : items)
+        ++start[owner + 1];
+      for (int i = 0; i < size; ++i)
+        start[i + 1] += start[i];
+      list.resize(items.size());
+      std::vector<int> next(start.begin(), start.end() - 1);
+      for (const auto &[owner, item] : items)
+        list[next[owner]++] = item;
+    };
+    std::vector<std::pair<int, int>> items;
     for (std::size_t k = 0; k < rows.size(); ++k)
-      for (const int a : vertices[rows[k]])
-        for (const int b : vertices[columns[k]])
-          if (a != b)
-            pairs.emplace_back(std::min(a, b), std::max(a, b));
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    std::vector<int> vertex_rows(pairs.size()), vertex_columns(pairs.size());
-    for (std::size_t k = 0; k < pairs.size(); ++k)
-      std::tie(vertex_rows[k], vertex_columns[k]) = pairs[k];
+      if (rows[k] != columns[k])
+        {
+          items.emplace_back(rows[k], columns[k]);
+          items.emplace_back(columns[k], rows[k]);
+        }
+    std::vector<int> neighbour_start, neighbours, row_start, rows_of_vertex;
+    compress(n, items, neighbour_start, neighbours);
+    items.clear();
+    for (int i = 0; i < n; ++i)
+      {
+        items.emplace_back(vertices[i][0], i);
+        if (vertices[i][1] != vertices[i][0])
+          items.emplace_back(vertices[i][1], i);
+      }
+    compress(n_vertices, items, row_start, rows_of_vertex);
+    // The vertices' graph, each pair once as (a, b), a < b, in increasing order: b is a
+    // vertex of a row of a, or of a row coupled to one (marked once per a).
+    std::vector<int> vertex_rows, vertex_columns, mark(n_vertices, -1), found;
+    for (int a = 0; a < n_vertices; ++a)
+      {
+        found.clear();
+        const auto meet = [&](const int row) {
+          for (const int b : vertices[row])
+            if (b > a && mark[b] != a)
+              {
+                mark[b] = a;
+                found.push_back(b);
+              }
+        };
+        for (int r = row_start[a]; r < row_start[a + 1]; ++r)
+          {
+            const int row = rows_of_vertex[r];
+            meet(row);
+            for (int k = neighbour_start[row]; k < neighbour_start[row + 1]; ++k)
+              meet(neighbours[k]);
+          }
+        std::sort(found.begin(), found.end());
+        for (const int b : found)
+          {
+            vertex_rows.push_back(a);
+            vertex_columns.push_back(b);
+          }
+      }
     const auto vertex_order =
       nested_dissection_order(n_vertices, vertex_rows, vertex_columns, options);
     if (!vertex_order)
