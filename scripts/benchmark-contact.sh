@@ -16,8 +16,18 @@
 #   x_prev            ms/step and newton/step over the same method's and obstacle's at the
 #                     previous size (N to about 2N: h halved)
 # and per method and N the ratios contact / no contact of the wall time (same simulated
-# time), ms/step, newton/step, lin/step and ms/newton (the issue's target: contact adds less
-# than 2x per step).
+# time), ms/step, newton/step, lin/step and ms/newton. Those runs follow different motions
+# (the free sheet never deforms: one Newton iteration per step).
+# The issue's target, "the sheet-on-sphere step against the same step without the
+# obstacle: contact adds less than 2x", is the third table: from each time T of --from, the
+# next --window steps of the sphere run against the same steps taken from the same state
+# with the sphere gone (its translation jumps 100 m down after T + dt/2: no vertex is within
+# reach of it then; the friction lagged at that step's start stays, a force of at most μ
+# times the barrier's at the start, and the edge-contact tangent is set to the one the
+# sphere run's 'automatic' takes for a resting sphere, gauss-newton). The script checks that
+# both runs are the same up to T (Newton iterations and kinetic energy, every step) and
+# prints, per T and summed over the T's: Newton iterations and wall time (statistics.csv's
+# wall_seconds) over the window, with and without the sphere, and their ratios.
 # A failed run is marked FAILED (its figures from its statistics.csv, accepted steps only),
 # the others still run, the output directory is kept and the exit code is 1.
 #
@@ -27,6 +37,10 @@
 #                       for CG with AMG: slow with contact, see Time below)
 #   --end-time T        simulated time, s (default 1.5, as the scene: the sheet lands at
 #                       about 0.1 s, so it is on the sphere for 93 % of the run)
+#   --from "T ..."      times (s) from which the same steps are run without the sphere
+#                       (default "0.3 0.6 0.9 1.2"; "" skips that table); each before
+#                       --end-time less the window
+#   --window K          steps after each T (default 6: 0.1 s)
 #   --set "S/N=V"       passed to every run (repeatable)
 #   --output DIR        where the runs write (DIR/<method>-N<N>-<sphere|none>/, run.log);
 #                       default a temporary directory, removed at the end unless --keep
@@ -36,7 +50,8 @@
 #   CLOTHSIM=path       the executable (default build/clothsim of the source tree)
 # Example: CLOTHSIM=/tmp/clothsim scripts/benchmark-contact.sh --sizes "21 41" --methods direct
 # Time (one core): N = 21, 41, 81 with direct about 5 s, 25 s, 3 min with contact, seconds
-# without. cg with contact: 15 s at N = 21, 14 min at N = 41 (step halvings), far longer at 81.
+# without; the runs from the --from times 2.3 times the contact run's again (about 10 min
+# in all). cg with contact: 15 s at N = 21, 14 min at N = 41 (step halvings), far longer.
 set -euo pipefail
 
 repository=$(cd "$(dirname "$0")/.." && pwd)
@@ -44,6 +59,8 @@ clothsim=${CLOTHSIM:-$repository/build/clothsim}
 sizes="21 41 81"
 methods="direct"
 end_time=1.5
+from_times="0.3 0.6 0.9 1.2"
+window=6
 output=""
 keep=false
 reuse=false
@@ -55,12 +72,14 @@ die() {
 }
 while [ $# -gt 0 ]; do
   case "$1" in
-    --sizes | --methods | --end-time | --set | --output)
+    --sizes | --methods | --end-time | --from | --window | --set | --output)
       [ $# -ge 2 ] || die "$1 expects a value"
       case "$1" in
         --sizes) sizes=$2 ;;
         --methods) methods=$2 ;;
         --end-time) end_time=$2 ;;
+        --from) from_times=$2 ;;
+        --window) window=$2 ;;
         --set) overrides+=(--set "$2") ;;
         --output) output=$2 ;;
       esac
@@ -73,6 +92,15 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ -x "$clothsim" ] || die "no executable '$clothsim' (build first, or set CLOTHSIM)"
+[[ "$window" =~ ^[1-9][0-9]*$ ]] || die "--window: a positive number of steps, not '$window'"
+# The scene's step (s), from its parameter file.
+dt=$(sed -n 's/^ *set Time step *= *\([0-9.e+-]*\).*/\1/p' \
+  "$repository/params/contact/sheet-on-sphere.prm" | head -n 1)
+for t in $from_times; do
+  awk -v t="$t" -v e="$end_time" -v w="$window" -v d="$dt" \
+    'BEGIN { exit !(t ~ /^[0-9.]+([eE][-+]?[0-9]+)?$/ && t > 0 && t + (w + 0.5) * d <= e) }' ||
+    die "--from: '$t' is not a time in (0, end time - window] (end time $end_time s, window $window steps of $dt s)"
+done
 for n in $sizes; do
   [[ "$n" =~ ^[0-9]+$ ]] && [ -f "$repository/meshes/swing-$n.geo" ] ||
     die "--sizes: no mesh meshes/swing-$n.geo"
@@ -167,6 +195,73 @@ printf '%s\n' "${rows[@]}" | awk '
         r(msn[c], msn[z])
     }
   }'
+
+# same_steps WITH WITHOUT T: "newton_with newton_without wall_with wall_without status" over
+# the steps that end in (T, T + window dt] of the two runs' statistics.csv, status "ok" if
+# every step up to T is the same in both (Newton iterations and kinetic energy as written).
+same_steps() {
+  awk -F, -v t="$3" -v end="$(awk -v t="$3" -v w="$window" -v d="$dt" 'BEGIN { printf "%.17g", t + w * d + 1e-9 }')" '
+    FNR == 1 { run++; for (c = 1; c <= NF; ++c) k[c] = $c; for (c = 1; c <= NF; ++c) col[$c] = c
+               previous = 0; next }
+    { time = $col["time"] + 0; wall = $col["wall_seconds"] + 0; step = wall - previous
+      previous = wall
+      if (time <= t + 1e-9) {
+        key = sprintf("%.9f", time); state = $col["newton_iterations"] " " $col["kinetic_energy"]
+        if (run == 1) before[key] = state
+        else if (!(key in before) || before[key] != state) diverged = 1
+        else matched++
+      } else if (time <= end) { newton[run] += $col["newton_iterations"]; seconds[run] += step }
+    }
+    END { status = diverged || matched == 0 ? "DIVERGED" : "ok"
+          if (newton[1] == 0 || newton[2] == 0) status = "FAILED"
+          printf "%d %d %.3f %.3f %s\n", newton[1], newton[2], seconds[1], seconds[2], status }' \
+    "$1" "$2" 2>/dev/null || echo "0 0 0 0 FAILED"
+}
+
+# The same steps from the same states without the sphere (the third table).
+if [ -n "$from_times" ]; then
+  same_rows=()
+  for method in $methods; do
+    for n in $sizes; do
+      with="$output/$method-N$n-sphere"
+      for t in $from_times; do
+        directory="$output/$method-N$n-from-$t"
+        mkdir -p "$directory"
+        printf '%s, N = %s, the sphere gone after t = %s s ... ' "$method" "$n" "$t" >&2
+        jump=$(awk -v t="$t" -v d="$dt" 'BEGIN { printf "%.17g", t + d / 2 }')
+        finish=$(awk -v t="$t" -v d="$dt" -v w="$window" 'BEGIN { printf "%.17g", t + (w + 0.5) * d }')
+        if [ "$reuse" = true ] && grep -q '^done: ' "$directory/run.log" 2>/dev/null; then
+          printf '(reused) ' >&2
+        else
+          "$clothsim" "$repository/params/contact/sheet-on-sphere.prm" \
+            --set "Mesh/Mesh file=$repository/meshes/swing-$n.msh" --set "Time/End time=$finish" \
+            --set "Output/Write VTK=false" --set "Output/Progress=off" \
+            --set "Linear solver/Method=$method" ${overrides[@]+"${overrides[@]}"} \
+            --set "Obstacle 1/Translation=0; 0; -100*(t>$jump)" \
+            --set "Contact/Edge contact tangent=gauss-newton" \
+            --output-dir "$directory" >"$directory/run.log" 2>&1 || failed=true
+        fi
+        row="$method $n $t $(same_steps "$with/statistics.csv" "$directory/statistics.csv" "$t")"
+        [ "${row##* }" = ok ] || failed=true
+        same_rows+=("$row")
+        echo "${row##* }" >&2
+      done
+    done
+  done
+  echo
+  echo "the same $window steps from the same state, with the sphere / without it (gone after T)"
+  printf '%s\n' "${same_rows[@]}" | awk '
+    function r(a, b) { return b > 0 ? sprintf("%.2f", a / b) : "-" }
+    BEGIN { f = "%-7s %4s %6s %8s %8s %7s %8s %8s %7s  %s\n"
+            printf f, "method", "N", "T", "newton", "newton", "ratio", "wall_s", "wall_s", "ratio", "status"
+            printf f, "", "", "", "sphere", "none", "", "sphere", "none", "", "" }
+    { printf f, $1, $2, $3, $4, $5, r($4, $5), $6, $7, r($6, $7), $8
+      k = $1 SUBSEP $2; if (!(k in n1)) order[++m] = k
+      n1[k] += $4; n2[k] += $5; w1[k] += $6; w2[k] += $7 }
+    END { for (i = 1; i <= m; ++i) { split(order[i], q, SUBSEP); k = order[i]
+            printf f, q[1], q[2], "all", n1[k], n2[k], r(n1[k], n2[k]), sprintf("%.3f", w1[k]),
+              sprintf("%.3f", w2[k]), r(w1[k], w2[k]), "" } }'
+fi
 
 if [ "$failed" = true ]; then
   echo "benchmark-contact: a run failed; runs kept in $output" >&2
