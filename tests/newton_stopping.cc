@@ -4,6 +4,10 @@
 //    climbs Φ although F·d < 0) must fail after one iteration with the line search's
 //    message; before, NOX went on from a step of 2^-30 until the iteration cap (measured
 //    on a folding step of the swinging sheet: 175 iterations that changed nothing).
+//    1b. So does a stall: Φ with a jump just ahead of the iterate along Newton's exact
+//    direction, so that each search keeps a shorter step (2⁻¹⁴, 2⁻¹⁵, ...) and ‖F‖
+//    stays: the solve fails naming the stall after at most 4 iterations (before: it
+//    went on until no step of 2⁻³⁰ decreased Φ).
 // 2. 'Truncation error fraction' (stop at a fraction of the step's estimated local
 //    error): on the swinging sheet (params/benchmarks/swing.prm, N = 21, first 0.5 s,
 //    where it starts to fold) with a fraction of 0.1 against the scene's fixed tolerance
@@ -57,8 +61,29 @@ namespace
     }
   };
 
-  unsigned int
-  check_line_search_failure(ConditionalOStream &pcout)
+  // Φ(u) = Σ u_i² + a jump of 1e3 where u_0 < 0.9999, from u_0 = 1: the exact Newton
+  // step (J = 2 I) crosses the jump, and each search keeps less of it than the last.
+  class StallingProblem : public ClimbingProblem
+  {
+  public:
+    double
+    objective(const TrilinosWrappers::MPI::Vector &u) override
+    {
+      return u.norm_sqr() + (u[0] < 0.9999 ? 1e3 : 0.);
+    }
+
+    void
+    residual(const TrilinosWrappers::MPI::Vector &u,
+             TrilinosWrappers::MPI::Vector       &F) override
+    {
+      F = u;
+      F *= 2.;
+    }
+  };
+
+  // Newton with the direct solver on `problem`, 10 unknowns from u_i = 1 + i.
+  NewtonResult
+  solve_small(NonlinearProblem &problem)
   {
     ParameterHandler prm;
     NonlinearSolverParameters::declare_parameters(prm);
@@ -87,14 +112,25 @@ namespace
     std::ostringstream quiet;
     TimerOutput        timer(quiet, TimerOutput::never, TimerOutput::wall_times);
     NewtonSolver       newton(nonlinear, linear, NearNullSpace(), matrix, timer);
-    ClimbingProblem    problem;
-    const NewtonResult result = newton.solve(problem, u);
-    pcout << "1. climbing problem: converged " << result.converged << ", iterations "
+    return newton.solve(problem, u);
+  }
+
+  // Newton on `problem` must fail within `most` iterations, naming `cause`.
+  unsigned int
+  check_failure(ConditionalOStream &pcout,
+                const std::string  &name,
+                NonlinearProblem   &problem,
+                const unsigned int  most,
+                const std::string  &cause)
+  {
+    const NewtonResult result = solve_small(problem);
+    pcout << name << ": converged " << result.converged << ", iterations "
           << result.iterations << ", failure \"" << result.failure << "\"" << std::endl;
-    const bool ok = !result.converged && result.iterations <= 1 &&
-                    result.failure.find("line search") != std::string::npos;
+    const bool ok = !result.converged && result.iterations <= most &&
+                    result.failure.find(cause) != std::string::npos;
     if (!ok)
-      pcout << "  FAIL  expected a line-search failure after one iteration" << std::endl;
+      pcout << "  FAIL  expected a failure naming '" << cause << "' within " << most
+            << " iterations" << std::endl;
     return ok ? 0 : 1;
   }
 
@@ -217,7 +253,11 @@ int
 main(int argc, char **argv)
 {
   Environment        env(argc, argv);
+  ClimbingProblem    climbing;
+  StallingProblem    stalling;
   const unsigned int failures =
-    check_line_search_failure(env.pcout) + check_truncation_error_fraction(env.pcout);
+    check_failure(env.pcout, "1. climbing problem", climbing, 1, "line search") +
+    check_failure(env.pcout, "1b. stalling problem", stalling, 4, "stalled") +
+    check_truncation_error_fraction(env.pcout);
   return finish(env.pcout, failures == 0);
 }

@@ -39,6 +39,31 @@ namespace clothsim
     step = std::min(1., cap(old_group.getX(), direction));
     if (step < 1e-2)
       ++n_held_back;
+    const double longest = step;
+    // No decrease at any step: fail the solve at once (NOX fails on a zero step), back at
+    // the old iterate. Continuing from a tiny step would only repeat the same direction
+    // until the iteration cap (measured: 175 wasted iterations on a folding step).
+    const auto fail = [&]() {
+      step = 0.;
+      group.computeX(old_group, direction, step);
+      group.computeF();
+      return false;
+    };
+    // A step kept far below the longest one tried that left the residual as it was,
+    // stall_count times in a row, is a stall: the same direction crawled along
+    // (measured: 19 Newton iterations in a row on steps of 2⁻⁷ to 2⁻³⁰ while ‖F‖ went
+    // from 0.840 to 0.835 N, the sheet on a sphere at N = 81), and the solve fails too.
+    const auto accept = [&](const double value) {
+      have_accepted_value = true;
+      accepted_value      = value;
+      const bool crawl =
+        step < stall_fraction * longest && group.getNormF() > stall_residual * old_norm;
+      n_stalled = crawl ? n_stalled + 1 : 0;
+      if (n_stalled < stall_count)
+        return true;
+      stalled = true;
+      return fail();
+    };
     for (unsigned int cut = 0; cut <= max_halvings && step > 0.; ++cut, step *= 0.5)
       {
         group.computeX(old_group, direction, step);
@@ -48,29 +73,30 @@ namespace clothsim
         if (value <= old_value + sufficient_decrease * step * slope)
           {
             group.computeF();
-            have_accepted_value = true;
-            accepted_value      = value;
-            return true;
+            return accept(value);
           }
         // Below the objective's resolution: accept if the residual decreases.
         if (std::abs(step * slope) < noise)
           {
             group.computeF();
             if (group.getNormF() < old_norm)
-              {
-                have_accepted_value = true;
-                accepted_value      = value;
-                return true;
-              }
+              return accept(value);
           }
       }
-    // No decrease at any step: fail the solve at once (NOX fails on a zero step), back at
-    // the old iterate. Continuing from a tiny step would only repeat the same direction
-    // until the iteration cap (measured: 175 wasted iterations on a folding step).
-    step = 0.;
-    group.computeX(old_group, direction, step);
-    group.computeF();
-    return false;
+    return fail();
+  }
+
+
+  std::string
+  EnergyLineSearch::failure_message() const
+  {
+    if (stalled)
+      return "the line search stalled: " + std::to_string(stall_count) +
+             " Newton updates in a row kept less than 1/" +
+             std::to_string(static_cast<int>(1. / stall_fraction)) +
+             " of their length and left the residual within 1 % (Φ decreases only so "
+             "close to the iterate)";
+    return "line search found no decrease (within its step cap)";
   }
 
 

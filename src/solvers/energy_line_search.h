@@ -6,8 +6,10 @@
 // solution the decrease α F·d falls below the round-off of Φ itself (|Φ| ε); there the
 // step is judged by the residual norm instead, so Newton's last iterations are not cut by
 // noise. When no step of the 30 halvings decreases Φ, the search fails with step 0 and
-// Newton with it (the time step is then cut). The search starts from the problem's
-// largest admissible step (contact: continuous collision detection), 1 without contact.
+// Newton with it (the time step is then cut); so does a stall, three searches in a row
+// that kept less than 1/1024 of their longest step and left ‖F‖ within 1 %. The search
+// starts from the problem's largest admissible step (contact: continuous collision
+// detection), 1 without contact.
 
 #include <NOX_LineSearch_Generic.H>
 #include <NOX_LineSearch_UserDefinedFactory.H>
@@ -42,6 +44,16 @@ namespace clothsim
     std::string
     iteration_cap_message(const unsigned int iterations) const;
 
+    // Why the last search failed: no decrease at any step, or a stall (the last
+    // stall_count searches each kept less than stall_fraction of their longest step and
+    // left ‖F‖ above stall_residual of what it was).
+    std::string
+    failure_message() const;
+
+    static constexpr double       stall_fraction = 1. / 1024.;
+    static constexpr double       stall_residual = 0.99;
+    static constexpr unsigned int stall_count    = 3;
+
   private:
     unsigned int       n_held_back = 0;
     Objective          objective;
@@ -51,6 +63,10 @@ namespace clothsim
     // saved).
     bool   have_accepted_value = false;
     double accepted_value      = 0.;
+    // Searches in a row that kept less than stall_fraction of their longest step, and
+    // whether the last one failed for that.
+    unsigned int n_stalled = 0;
+    bool         stalled   = false;
   };
 
   // NOX builds line searches through a factory ("User Defined Line Search Factory").

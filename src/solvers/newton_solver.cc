@@ -571,7 +571,7 @@ namespace clothsim
         else if (max_iterations->getStatus() == NOX::StatusTest::Failed)
           result.failure = line_search->iteration_cap_message(parameters.max_iterations);
         else
-          result.failure = "line search found no decrease (within its step cap)";
+          result.failure = line_search->failure_message();
       }
     return result;
   }
