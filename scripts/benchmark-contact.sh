@@ -38,11 +38,12 @@
 #   --end-time T        simulated time, s (default 1.5, as the scene: the sheet lands at
 #                       about 0.1 s, so it is on the sphere for 93 % of the run)
 #   --from "T ..."      times (s) from which the same steps are run without the sphere
-#                       (default "0.3 0.6 0.9 1.2"; "" skips that table); each before
-#                       --end-time less the window
+#                       (default "0.3 0.6 0.9 1.2"; "" skips that table); each at
+#                       least window + 3 steps before --end-time
 #   --window K          steps after each T (default 6: 0.1 s)
 #   --set "S/N=V"       passed to every run (repeatable)
-#   --output DIR        where the runs write (DIR/<method>-N<N>-<sphere|none>/, run.log);
+#   --output DIR        where the runs write (DIR/<method>-N<N>-<sphere|none|from-T>/,
+#                       run.log);
 #                       default a temporary directory, removed at the end unless --keep
 #   --keep              keep the temporary output directory
 #   --reuse             with --output: do not run again what a run there finished (its
