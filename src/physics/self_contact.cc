@@ -115,7 +115,7 @@ namespace clothsim::physics
   void
   SelfContact::for_each_pair(const double                            *u_local,
                              const double                            *step_local,
-                             const double                             margin,
+                             const double                            &margin,
                              const std::function<void(const Pair &)> &visit) const
   {
     const double a_per_d = settings.barrier_acceleration / settings.thickness;
@@ -539,7 +539,11 @@ namespace clothsim::physics
     const PhaseScope scope(phases, phases.report);
     const double    *u_local = gathered(u, positions);
     Report           result{std::numeric_limits<double>::infinity(), 0};
-    for_each_pair(u_local, nullptr, range, [&](const Pair &pair) {
+    // The search reach falls to the nearest distance found so far (a closer pair lies
+    // within it), never below d̂ (every pair within d̂ is counted): with a range of 10
+    // d̂ the report took 13 % of the twisted tube's run.
+    double reach = range;
+    for_each_pair(u_local, nullptr, reach, [&](const Pair &pair) {
       if (within_pieces && piece[pair.index[0]] != piece[pair.index[3]])
         return;
       const double d =
@@ -548,6 +552,7 @@ namespace clothsim::physics
         result.min_distance = std::min(result.min_distance, d);
       if (d < settings.thickness && counted(pair))
         ++result.pairs;
+      reach = std::max(settings.thickness, std::min(reach, d));
     });
     const MPI_Comm communicator = whole.get_communicator();
     result.min_distance         = Utilities::MPI::min(result.min_distance, communicator);

@@ -179,11 +179,12 @@ namespace clothsim::physics
     boxes_apart(const PairKind kind, const PairPoints &x, const double gap);
 
     // Calls `visit` for every pair whose primitives' boxes (around their positions at
-    // u, and at u + step if `step_local` is non-null) come within `margin`.
+    // u, and at u + step if `step_local` is non-null) come within `margin`. `margin` is
+    // read at each primitive's query: `visit` may lower it (report's nearest pair).
     void
     for_each_pair(const double                            *u_local,
                   const double                            *step_local,
-                  const double                             margin,
+                  const double                            &margin,
                   const std::function<void(const Pair &)> &visit) const;
 
     // Calls `visit` for every pair that may be closer than `reach` at u: from a list of
