@@ -95,6 +95,7 @@ namespace clothsim
 
     // A: the displacement rows restricted to displacement columns; the hinge stencil of
     // the Schur correction makes rows longer, so the profile grows as needed.
+    amg.reset();
     block_matrix = std::make_unique<Epetra_FECrsMatrix>(Copy, map, 64);
     double unused_diagonal;
     for (unsigned int k = 0; k < displacement_local.size(); ++k)
