@@ -79,6 +79,18 @@ namespace
       F = u;
       F *= 2.;
     }
+
+    // The index of the update's largest entry: Newton's update -u is largest at the
+    // last unknown, u_9 = 10.
+    std::string
+    describe_update(const TrilinosWrappers::MPI::Vector &update) const override
+    {
+      unsigned int largest = 0;
+      for (unsigned int i = 0; i < update.size(); ++i)
+        if (std::abs(update[i]) > std::abs(update[largest]))
+          largest = i;
+      return "unknown " + std::to_string(largest);
+    }
   };
 
   // Newton with the direct solver on `problem`, 10 unknowns from u_i = 1 + i.
@@ -258,6 +270,11 @@ main(int argc, char **argv)
   const unsigned int failures =
     check_failure(env.pcout, "1. climbing problem", climbing, 1, "line search") +
     check_failure(env.pcout, "1b. stalling problem", stalling, 4, "stalled") +
+    check_failure(env.pcout,
+                  "1c. stalling problem: the last update named",
+                  stalling,
+                  4,
+                  "the last update's largest entry: unknown 9") +
     check_truncation_error_fraction(env.pcout);
   return finish(env.pcout, failures == 0);
 }

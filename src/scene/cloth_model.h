@@ -16,6 +16,7 @@
 #include "io/parameters.h"
 #include "mesh/discretization.h"
 #include "mesh/gmsh_reader.h"
+#include "mesh/largest_entry.h"
 #include "physics/contact_term.h"
 #include "physics/model.h"
 #include "physics/self_contact.h"
@@ -53,6 +54,11 @@ namespace clothsim
     reference_size() const override
     {
       return discretization.largest_reference_coordinate();
+    }
+    std::string
+    describe_largest_entry(const VectorType &vector) const override
+    {
+      return mesh::describe_largest_entry(discretization, vector);
     }
     const BoundaryConditions &
     get_boundary_conditions() const

@@ -65,6 +65,7 @@ namespace clothsim
       // convergence test's step tolerance (m).
       bool   speculate      = false;
       double step_tolerance = 0.;
+      bool   has_direction  = false; // `direction` holds the last line search's
     };
 
     // NOX's residual callback.
@@ -452,6 +453,7 @@ namespace clothsim
       [&context](const NOX::Abstract::Vector &x, const NOX::Abstract::Vector &direction) {
         copy(epetra(x), context.u);
         copy(epetra(direction), context.direction);
+        context.has_direction = true;
         return context.problem.largest_step(context.u, context.direction);
       },
       /*max_halvings=*/30));
@@ -568,10 +570,19 @@ namespace clothsim
                     << result.residual_norm << " N";
             result.failure = message.str();
           }
-        else if (max_iterations->getStatus() == NOX::StatusTest::Failed)
-          result.failure = line_search->iteration_cap_message(parameters.max_iterations);
         else
-          result.failure = line_search->failure_message();
+          {
+            result.failure =
+              max_iterations->getStatus() == NOX::StatusTest::Failed
+                ? line_search->iteration_cap_message(parameters.max_iterations)
+                : line_search->failure_message();
+            // Where the last update pushed hardest: e.g. a director angle turning at a
+            // crease (README, "Contact with obstacles").
+            const std::string largest =
+              context.has_direction ? problem.describe_update(context.direction) : "";
+            if (!largest.empty())
+              result.failure += "; the last update's largest entry: " + largest;
+          }
       }
     return result;
   }

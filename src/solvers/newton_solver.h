@@ -65,6 +65,14 @@ namespace clothsim
       return 1.;
     }
 
+    // For a failed solve's message: what the largest entry of a Newton update moves and
+    // where (empty: nothing to add). Collective.
+    virtual std::string
+    describe_update(const TrilinosWrappers::MPI::Vector & /*update*/) const
+    {
+      return {};
+    }
+
     // The size of a Newton update for the step-size convergence test: its largest
     // displacement component (m, over all ranks). The default takes every unknown.
     virtual double

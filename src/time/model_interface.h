@@ -60,6 +60,13 @@ namespace clothsim
     // positions X + u (Newton's round-off floor). Collective.
     virtual double
     reference_size() const = 0;
+    // What the largest entry of `vector` (owned) moves and where, for a message (e.g. a
+    // failed Newton solve's last update; mesh/largest_entry.h). Collective.
+    virtual std::string
+    describe_largest_entry(const VectorType & /*vector*/) const
+    {
+      return {};
+    }
     // The lumped mass of every dof's vertex (owned, kg; zero on angle dofs).
     virtual void
     lumped_masses(VectorType &masses) const = 0;

@@ -67,6 +67,13 @@ namespace clothsim
     double
     update_size(const VectorType &update) const override;
 
+    // The model's name for the update's largest entry.
+    std::string
+    describe_update(const VectorType &update) const override
+    {
+      return model.describe_largest_entry(update);
+    }
+
     // The model changed under the same unknowns (friction lagged again at the solution):
     // Φ and its gradient are assembled anew, at the last point too.
     void
