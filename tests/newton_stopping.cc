@@ -7,7 +7,8 @@
 //    1b. So does a stall: Φ with a jump just ahead of the iterate along Newton's exact
 //    direction, so that each search keeps a shorter step (2⁻¹⁴, 2⁻¹⁵, ...) and ‖F‖
 //    stays: the solve fails naming the stall after at most 4 iterations (before: it
-//    went on until no step of 2⁻³⁰ decreased Φ).
+//    went on until no step of 2⁻³⁰ decreased Φ), and naming the last update's largest
+//    entry (NonlinearProblem::describe_update: Newton's update -u is largest at u_9).
 // 2. 'Truncation error fraction' (stop at a fraction of the step's estimated local
 //    error): on the swinging sheet (params/benchmarks/swing.prm, N = 21, first 0.5 s,
 //    where it starts to fold) with a fraction of 0.1 against the scene's fixed tolerance
@@ -26,6 +27,8 @@
 #include "extreme_runs.h"
 #include "io/parameters.h"
 #include "solvers/newton_solver.h"
+
+#include <vector>
 
 using namespace clothsim;
 using namespace clothsim::test;
@@ -127,22 +130,27 @@ namespace
     return newton.solve(problem, u);
   }
 
-  // Newton on `problem` must fail within `most` iterations, naming `cause`.
+  // Newton on `problem` must fail within `most` iterations, naming each of `causes`.
   unsigned int
-  check_failure(ConditionalOStream &pcout,
-                const std::string  &name,
-                NonlinearProblem   &problem,
-                const unsigned int  most,
-                const std::string  &cause)
+  check_failure(ConditionalOStream             &pcout,
+                const std::string              &name,
+                NonlinearProblem               &problem,
+                const unsigned int              most,
+                const std::vector<std::string> &causes)
   {
     const NewtonResult result = solve_small(problem);
     pcout << name << ": converged " << result.converged << ", iterations "
           << result.iterations << ", failure \"" << result.failure << "\"" << std::endl;
-    const bool ok = !result.converged && result.iterations <= most &&
-                    result.failure.find(cause) != std::string::npos;
+    bool ok = !result.converged && result.iterations <= most;
+    for (const std::string &cause : causes)
+      ok &= result.failure.find(cause) != std::string::npos;
     if (!ok)
-      pcout << "  FAIL  expected a failure naming '" << cause << "' within " << most
-            << " iterations" << std::endl;
+      {
+        pcout << "  FAIL  expected a failure within " << most << " iterations naming";
+        for (const std::string &cause : causes)
+          pcout << " '" << cause << "'";
+        pcout << std::endl;
+      }
     return ok ? 0 : 1;
   }
 
@@ -268,13 +276,12 @@ main(int argc, char **argv)
   ClimbingProblem    climbing;
   StallingProblem    stalling;
   const unsigned int failures =
-    check_failure(env.pcout, "1. climbing problem", climbing, 1, "line search") +
-    check_failure(env.pcout, "1b. stalling problem", stalling, 4, "stalled") +
+    check_failure(env.pcout, "1. climbing problem", climbing, 1, {"line search"}) +
     check_failure(env.pcout,
-                  "1c. stalling problem: the last update named",
+                  "1b. stalling problem",
                   stalling,
                   4,
-                  "the last update's largest entry: unknown 9") +
+                  {"stalled", "the last update's largest entry: unknown 9"}) +
     check_truncation_error_fraction(env.pcout);
   return finish(env.pcout, failures == 0);
 }

@@ -95,6 +95,8 @@ namespace clothsim
 
     // A: the displacement rows restricted to displacement columns; the hinge stencil of
     // the Schur correction makes rows longer, so the profile grows as needed.
+    // The old hierarchy first: it refers to the old matrix (ML's IFPACK smoothers read
+    // it when destroyed).
     amg.reset();
     block_matrix = std::make_unique<Epetra_FECrsMatrix>(Copy, map, 64);
     double unused_diagonal;

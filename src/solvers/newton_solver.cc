@@ -65,7 +65,7 @@ namespace clothsim
       // convergence test's step tolerance (m).
       bool   speculate      = false;
       double step_tolerance = 0.;
-      bool   has_direction  = false; // `direction` holds the last line search's
+      bool   has_direction  = false; // `direction` holds the last line search's update
     };
 
     // NOX's residual callback.
