@@ -8,6 +8,9 @@
 //    differences (relative 1e-5) for every kind and set of moving points, edge-edge
 //    pairs with and without the mollifier at work, of the pair's distance and of its
 //    distance less an offset r (an analytic obstacle's inflated core, edge contact).
+//    The gradient alone and Gauss-Newton's (closed form, from the closest points'
+//    weights) equal the exact path's gradient to 1e-10, and Gauss-Newton's curvature
+//    along a random direction is κ s''(d) (∇d·v)², ∇d·v by differences (1e-5).
 // 3. The positive semi-definite projection: a 12 x 12 matrix of known eigenvalues
 //    (half negative) becomes the matrix with those set to zero, to 1e-12. And what the
 //    tangents keep of a triangle turning about the point of it closest to a core point
@@ -192,7 +195,7 @@ namespace
             if (mollified && m != 2)
               continue;
             const PairKind kind  = m < 2 ? PairKind::point_triangle : PairKind::edge_edge;
-            double         g_err = 0., h_err = 0.;
+            double         g_err = 0., h_err = 0., closed_err = 0., gauss_err = 0.;
             unsigned int   tried = 0;
             std::mt19937   local(m + 10 * mollified);
             while (tried < 50)
@@ -236,8 +239,65 @@ namespace
                                                offset);
                 };
                 const physics::PairBarrier b = barrier_at(x);
-                const double               h = 1e-8;
-                unsigned int               k = 0;
+                // The gradient alone (closed form unless mollified) and Gauss-Newton's
+                // Hessian: the same gradient, and along a random v the curvature
+                // κ s''(d) (∇d·v)², ∇d·v by central differences of the distance.
+                const auto other_form = [&](const unsigned int order) {
+                  return physics::pair_barrier(kind,
+                                               x,
+                                               masks[m],
+                                               kappa,
+                                               d_hat,
+                                               threshold,
+                                               order,
+                                               physics::PairHessian::gauss_newton,
+                                               false,
+                                               offset);
+                };
+                const physics::PairBarrier first = other_form(1), gauss = other_form(2);
+                double                     scale = 0.;
+                for (unsigned int j = 0; j < b.n; ++j)
+                  scale = std::max(scale, std::abs(b.gradient[j]));
+                for (unsigned int j = 0; j < b.n; ++j)
+                  closed_err =
+                    std::max({closed_err,
+                              std::abs(first.gradient[j] - b.gradient[j]) / scale,
+                              std::abs(gauss.gradient[j] - b.gradient[j]) / scale});
+                if (!mollified)
+                  {
+                    std::array<double, 12> v{};
+                    PairPoints             plus = x, minus = x;
+                    const double           step = 1e-7;
+                    for (unsigned int i = 0, k = 0; i < 4; ++i)
+                      if (masks[m][i])
+                        for (unsigned int c = 0; c < 3; ++c, ++k)
+                          {
+                            v[k] = u(local);
+                            plus[i][c] += step * v[k];
+                            minus[i][c] -= step * v[k];
+                          }
+                    const double slope =
+                      (std::sqrt(physics::pair_squared_distance(kind, plus)) -
+                       std::sqrt(physics::pair_squared_distance(kind, minus))) /
+                      (2. * step);
+                    const double expected =
+                      kappa * physics::contact::barrier_second(dd, d_hat) * slope * slope;
+                    double curvature = 0., v_squared = 0.;
+                    for (unsigned int i = 0; i < gauss.n; ++i)
+                      {
+                        v_squared += v[i] * v[i];
+                        for (unsigned int j = 0; j < gauss.n; ++j)
+                          curvature += v[i] * gauss.hessian[i * gauss.n + j] * v[j];
+                      }
+                    // Relative to κ s''(d) |v|² (|∇d| is at most √2).
+                    gauss_err =
+                      std::max(gauss_err,
+                               std::abs(curvature - expected) /
+                                 (kappa * physics::contact::barrier_second(dd, d_hat) *
+                                  v_squared));
+                  }
+                const double h = 1e-8;
+                unsigned int k = 0;
                 for (unsigned int i = 0; i < 4; ++i)
                   if (masks[m][i])
                     for (unsigned int c = 0; c < 3; ++c, ++k)
@@ -278,6 +338,15 @@ namespace
               check_below(pcout, what + "gradient against differences", g_err, 1e-5);
             passed &=
               check_below(pcout, what + "Hessian against differences", h_err, 1e-5);
+            passed &= check_below(pcout,
+                                  what + "gradient alone and Gauss-Newton's against it",
+                                  closed_err,
+                                  1e-10);
+            if (!mollified)
+              passed &= check_below(pcout,
+                                    what + "Gauss-Newton's curvature against differences",
+                                    gauss_err,
+                                    1e-5);
           }
     return passed;
   }

@@ -12,6 +12,10 @@
 // 2. The line-search cap: pushing the upper half down by twice the gap (through the
 //    lower half) is capped below 1, and on 200 points of the capped path no distance
 //    between primitives falls below a tenth of the smallest at its start.
+// 2b. The near pairs' list that evaluations reuse: the sheet folded 2.5 d̂ apart, moved
+//    as a whole by 13 d̂ (the list is kept), then its upper half 0.5 d̂ above the lower
+//    one (a relative motion of 2 d̂: pairs the list does not hold come within d̂). The
+//    kept term's energy equals a new term's (1e-14; a list kept too long gives 0.014).
 // 3. Whole runs, every written frame checked for intersecting triangle pairs (Output/
 //    Check intersections) and every step's self_contact_min_distance > 0: the strip pile
 //    (params/contact/strip-pile.prm, 1.5 s as shipped) and the sheet falling onto the
@@ -194,6 +198,64 @@ namespace
     return passed;
   }
 
+  // The list of near pairs that the barrier's evaluations reuse: a moved state's energy
+  // from the term that listed its pairs at an earlier state against a new term's.
+  bool
+  check_near_list(ConditionalOStream &pcout)
+  {
+    const auto scene = load_scene(source_path(sphere_scene), {mesh_21}, MPI_COMM_WORLD);
+    const ClothModel        &model = *scene->model;
+    const ContactParameters &given = scene->parameters().contact;
+    const double             d_hat = given.thickness;
+    VectorType               masses;
+    model.lumped_masses(masses);
+    const physics::ContactSettings settings{given.thickness,
+                                            given.barrier_acceleration,
+                                            given.slip_velocity};
+    const physics::SelfContact     kept(settings, model.get_discretization(), masses);
+    VectorType                     u, v, at;
+    model.initialize_owned(u);
+    model.initialize_ghosted(v);
+    model.initialize_ghosted(at);
+    const auto energy = [&](const physics::SelfContact &term) {
+      return Utilities::MPI::sum(term.energy(at, v, nullptr), MPI_COMM_WORLD);
+    };
+    // Folded 2.5 d̂ apart (no pair between the layers on the list), then moved as a
+    // whole by 13 d̂ (a translation keeps the list), then also the upper half down to
+    // 0.5 d̂ above the lower one (a relative motion of 2 d̂: pairs come within d̂ that
+    // were not on the list, so it must be made again).
+    fold(model, 2.5 * d_hat, u); // nonzero exactly on the upper half
+    at          = u;
+    bool passed = check_equal(pcout, "folded 2.5 d̂ apart: energy", energy(kept), 0.);
+    // `from` with every vertex moved by (3, -4, 12) d̂.
+    const Tensor<1, 3> shift({3. * d_hat, -4. * d_hat, 12. * d_hat});
+    const auto         shifted = [&](const VectorType &from) {
+      VectorType to(from);
+      for (const auto &element : model.get_discretization().elements())
+        for (unsigned int k = 0; k < 9; ++k)
+          if (model.owned_dofs().is_element(element.dofs[k]))
+            to[element.dofs[k]] = from[element.dofs[k]] + shift[k % 3];
+      to.compress(VectorOperation::insert);
+      return to;
+    };
+    at = shifted(u);
+    passed &= check_equal(pcout, "moved as a whole: energy", energy(kept), 0.);
+    VectorType closer;
+    model.initialize_owned(closer);
+    fold(model, 0.5 * d_hat, closer);
+    at                  = shifted(closer);
+    const double reused = energy(kept);
+    const double fresh =
+      energy(physics::SelfContact(settings, model.get_discretization(), masses));
+    passed &= check_above(pcout, "layers 0.5 d̂ apart: energy, J", fresh, 0.);
+    passed &= check_near(pcout,
+                         "layers 0.5 d̂ apart: energy of the kept term / a new one's",
+                         reused / fresh,
+                         1.,
+                         1e-14);
+    return passed;
+  }
+
   // A run's largest number of intersecting triangle pairs over its written rows, and
   // (with self-contact) its smallest distance between primitives.
   std::pair<double, double>
@@ -353,6 +415,7 @@ main(int argc, char **argv)
   else
     {
       passed &= check_term(pcout);
+      passed &= check_near_list(pcout);
       passed &= check_runs(pcout);
     }
   pcout << (passed ? "PASSED" : "FAILED") << std::endl;

@@ -122,6 +122,39 @@ namespace clothsim::physics
         result.value = kappa * contact::barrier(d, d_hat);
         return result;
       }
+    const bool mollified =
+      threshold > 0. &&
+      cross_product_3d(x[1] - x[0], x[3] - x[2]).norm_square() < threshold;
+    if (!mollified && (order == 1 || (hessian && form == PairHessian::gauss_newton)))
+      {
+        // In closed form: ∇d = (w_i r/|r|)_i with r = Σ w_i x_i between the closest
+        // points (closest_point_weights; the weights are optimal, so they do not move
+        // d to first order), ∇φ = κ s'(d) ∇d, Gauss-Newton's κ s''(d) ∇d ∇dᵀ.
+        const std::array<double, 4> w = closest_point_weights(type, x);
+        Tensor<1, 3>                r;
+        for (unsigned int i = 0; i < 4; ++i)
+          r += w[i] * x[i];
+        const Tensor<1, 3>     normal = r / r.norm();
+        std::array<double, 12> gradient_d;
+        unsigned int           n = 0;
+        for (unsigned int i = 0; i < 4; ++i)
+          if (moving[i])
+            for (unsigned int c = 0; c < 3; ++c)
+              gradient_d[n++] = w[i] * normal[c];
+        result.n           = n;
+        result.value       = kappa * contact::barrier(d, d_hat);
+        const double first = kappa * contact::barrier_first(d, d_hat);
+        for (unsigned int k = 0; k < n; ++k)
+          result.gradient[k] = first * gradient_d[k];
+        if (hessian)
+          {
+            const double second = kappa * contact::barrier_second(d, d_hat);
+            for (unsigned int k = 0; k < n; ++k)
+              for (unsigned int l = 0; l < n; ++l)
+                result.hessian[k * n + l] = second * gradient_d[k] * gradient_d[l];
+          }
+        return result;
+      }
     if (order == 0)
       {
         std::array<std::array<double, 3>, 4> X;
@@ -139,9 +172,6 @@ namespace clothsim::physics
                                                                          : 4;
     for (unsigned int k = 0; k < n_form; ++k)
       active[type.points[k]] = true;
-    const bool mollified =
-      threshold > 0. &&
-      cross_product_3d(x[1] - x[0], x[3] - x[2]).norm_square() < threshold;
     if (mollified)
       active = {{true, true, true, true}};
     unsigned int n_active = 0;

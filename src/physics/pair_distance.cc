@@ -18,39 +18,51 @@ namespace clothsim::physics
       return c;
     }
 
-    // The closest point of segment a b to p: its type (point-point or point-line).
-    DistanceType
-    point_segment_type(const PairPoints  &x,
+    // The closest point of segment a b to p: its squared distance |p - a - t (b - a)|²,
+    // t clamped to [0, 1] (no branches: four of these per edge-edge pair), and t.
+    struct SegmentPoint
+    {
+      double       squared_distance, t;
+      unsigned int p, a, b;
+    };
+    SegmentPoint
+    closest_on_segment(const PairPoints  &x,
                        const unsigned int p,
                        const unsigned int a,
                        const unsigned int b)
     {
-      const Tensor<1, 3> e = x[b] - x[a];
-      const double       t = (x[p] - x[a]) * e / e.norm_square();
-      if (t <= 0.)
-        return {DistanceType::point_point, {{p, a, 0, 0}}};
-      if (t >= 1.)
-        return {DistanceType::point_point, {{p, b, 0, 0}}};
-      return {DistanceType::point_line, {{p, a, b, 0}}};
+      // In plain doubles: this runs tens of millions of times in a self-contact run,
+      // and GCC keeps deal.II's Point::operator- out of line.
+      double e[3], v[3], ee = 0., ve = 0.;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          e[d] = x[b][d] - x[a][d];
+          v[d] = x[p][d] - x[a][d];
+          ee += e[d] * e[d];
+          ve += v[d] * e[d];
+        }
+      const double t  = std::clamp(ve / ee, 0., 1.);
+      double       d2 = 0.;
+      for (unsigned int d = 0; d < 3; ++d)
+        d2 += (v[d] - t * e[d]) * (v[d] - t * e[d]);
+      return {d2, t, p, a, b};
     }
 
-    // The type with the smallest distance among `candidates`.
+    // The type of the candidate closest to its point: point-point at a segment's end,
+    // else point-line.
     template <std::size_t n>
     DistanceType
-    closest_of(const std::array<DistanceType, n> &candidates, const PairPoints &x)
+    closest_of(const std::array<SegmentPoint, n> &candidates)
     {
-      DistanceType best     = candidates[0];
-      double       smallest = std::numeric_limits<double>::infinity();
-      for (const DistanceType &type : candidates)
-        {
-          const double d2 = squared_distance(type, x);
-          if (d2 < smallest)
-            {
-              smallest = d2;
-              best     = type;
-            }
-        }
-      return best;
+      const SegmentPoint *best = &candidates[0];
+      for (const SegmentPoint &candidate : candidates)
+        if (candidate.squared_distance < best->squared_distance)
+          best = &candidate;
+      if (best->t <= 0.)
+        return {DistanceType::point_point, {{best->p, best->a, 0, 0}}};
+      if (best->t >= 1.)
+        return {DistanceType::point_point, {{best->p, best->b, 0, 0}}};
+      return {DistanceType::point_line, {{best->p, best->a, best->b, 0}}};
     }
   } // namespace
 
@@ -134,10 +146,9 @@ namespace clothsim::physics
         const double b2 = cross_product_3d(e0, w) * n / nn;
         if (b1 > 0. && b2 > 0. && b1 + b2 < 1.)
           return {DistanceType::point_plane, {{0, 1, 2, 3}}};
-        return closest_of(std::array<DistanceType, 3>{{point_segment_type(x, 0, 1, 2),
-                                                       point_segment_type(x, 0, 2, 3),
-                                                       point_segment_type(x, 0, 3, 1)}},
-                          x);
+        return closest_of(std::array<SegmentPoint, 3>{{closest_on_segment(x, 0, 1, 2),
+                                                       closest_on_segment(x, 0, 2, 3),
+                                                       closest_on_segment(x, 0, 3, 1)}});
       }
 
     // Edges: the minimum of |a0 + s ea - b0 - t eb|² over the unit square is inside it
@@ -151,11 +162,10 @@ namespace clothsim::physics
         if (s > 0. && s < 1. && t > 0. && t < 1.)
           return {DistanceType::line_line, {{0, 1, 2, 3}}};
       }
-    return closest_of(std::array<DistanceType, 4>{{point_segment_type(x, 0, 2, 3),
-                                                   point_segment_type(x, 1, 2, 3),
-                                                   point_segment_type(x, 2, 0, 1),
-                                                   point_segment_type(x, 3, 0, 1)}},
-                      x);
+    return closest_of(std::array<SegmentPoint, 4>{{closest_on_segment(x, 0, 2, 3),
+                                                   closest_on_segment(x, 1, 2, 3),
+                                                   closest_on_segment(x, 2, 0, 1),
+                                                   closest_on_segment(x, 3, 0, 1)}});
   }
 
 

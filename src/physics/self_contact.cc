@@ -41,6 +41,35 @@ namespace clothsim::physics
       const double         nested;
       Clock::time_point    start;
     };
+
+    // The largest |m(p) - c| over p < n, c the centre of the box around all m(p). Pair
+    // distances do not change when every vertex moves by the same c, so this bounds how
+    // far motions m(p) can change any pair's distance (by at most twice it).
+    template <typename Motion>
+    double
+    largest_relative_motion(const unsigned int n, const Motion &motion)
+    {
+      Tensor<1, 3> low, high;
+      for (unsigned int d = 0; d < 3; ++d)
+        {
+          low[d]  = std::numeric_limits<double>::infinity();
+          high[d] = -std::numeric_limits<double>::infinity();
+        }
+      for (unsigned int p = 0; p < n; ++p)
+        {
+          const Tensor<1, 3> m = motion(p);
+          for (unsigned int d = 0; d < 3; ++d)
+            {
+              low[d]  = std::min(low[d], m[d]);
+              high[d] = std::max(high[d], m[d]);
+            }
+        }
+      const Tensor<1, 3> centre  = (low + high) / 2.;
+      double             largest = 0.;
+      for (unsigned int p = 0; p < n; ++p)
+        largest = std::max(largest, (motion(p) - centre).norm_square());
+      return std::sqrt(largest);
+    }
   } // namespace
 
 
@@ -150,6 +179,7 @@ namespace clothsim::physics
       boxes.push_back(box_of(edge, 0.));
     fit(edge_tree, boxes);
     rebuild_trees = false;
+
     std::vector<unsigned int> found;
     Pair                      pair;
 
@@ -205,15 +235,18 @@ namespace clothsim::physics
   {
     // The pairs closer than the margin m at the cached state hold every pair closer
     // than `reach` at any state whose vertices have moved by at most (m - reach)/2 from
-    // it.
+    // it, less a common translation (a falling sheet keeps its list).
     const double margin = 2. * settings.thickness;
     if (reach > margin)
       return false;
     const Clock::time_point start = Clock::now();
-    double moved = near_from.empty() ? std::numeric_limits<double>::infinity() : 0.;
-    for (unsigned int p = 0; p < near_from.size(); ++p)
-      moved = std::max(moved, cloth.position(p, u_local).distance_square(near_from[p]));
-    if (2. * std::sqrt(moved) > margin - reach)
+    const double            moved =
+      near_from.empty()
+                   ? std::numeric_limits<double>::infinity()
+                   : largest_relative_motion(near_from.size(), [&](const unsigned int p) {
+            return cloth.position(p, u_local) - near_from[p];
+          });
+    if (2. * moved > margin - reach)
       {
         near_pairs.clear();
         for_each_pair(u_local, nullptr, margin, [&](const Pair &pair) {
@@ -413,24 +446,26 @@ namespace clothsim::physics
     const double    *u_local    = gathered(u, positions);
     const double    *step_local = gathered(direction, motions);
     double           alpha      = 1.;
+    double           reach      = 0.; // see below
     const auto       cap        = [&](const Pair &pair) {
+      const PairPoints x = pair_points(pair, u_local);
+      if (boxes_apart(pair.kind, x, reach))
+        return; // its distance is `reach` or more
       PairPoints dx;
       for (unsigned int i = 0; i < 4; ++i)
         dx[i] = Point<3>(cloth.part(pair.index[i], step_local));
-      alpha = std::min(alpha,
-                       pair_step_bound(pair.kind,
-                                       pair_points(pair, u_local),
-                                       dx,
-                                       settings.ccd_fraction));
+      alpha = std::min(alpha, pair_step_bound(pair.kind, x, dx, settings.ccd_fraction));
     };
-    // A pair at distance D moves by at most 2 s on the path (s: the largest motion of a
-    // vertex), so it cannot come below a tenth of D if 0.9 D > 2 s: only the pairs
-    // closer than 2 s / 0.9 need the test, the near pairs if they cover that. Else the
-    // pairs whose swept boxes meet (those apart cannot meet on the path).
-    double largest = 0.;
-    for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
-      largest = std::max(largest, cloth.part(p, step_local).norm_square());
-    const double reach = 2. * std::sqrt(largest) / (1. - settings.ccd_fraction);
+    // A pair's distance D changes by at most 2 s on the path (s: the largest motion of
+    // a vertex less the motions' common part), so it cannot come below a tenth of D if
+    // 0.9 D > 2 s: only the pairs closer than 2 s / 0.9 need the test, the near pairs if
+    // they cover that. Else the pairs whose swept boxes meet (those apart cannot meet on
+    // the path).
+    const double largest =
+      largest_relative_motion(cloth.vertices.size(), [&](const unsigned int p) {
+        return Tensor<1, 3>(cloth.part(p, step_local));
+      });
+    reach = 2. * largest / (1. - settings.ccd_fraction);
     if (!for_each_near_pair(u_local, reach, cap))
       for_each_pair(u_local, step_local, 0., cap);
     return alpha;

@@ -189,8 +189,8 @@ namespace clothsim::physics
 
     // Calls `visit` for every pair that may be closer than `reach` at u: from a list of
     // the pairs closer than 2 d̂ at an earlier state, kept while no vertex has moved by
-    // more than (2 d̂ - reach)/2 from it (else made again here). Returns false (visiting
-    // none) if `reach` exceeds 2 d̂.
+    // more than (2 d̂ - reach)/2 from it, less the motions' common part (else made again
+    // here). Returns false (visiting none) if `reach` exceeds 2 d̂.
     bool
     for_each_near_pair(const double                            *u_local,
                        const double                             reach,
