@@ -14,8 +14,9 @@
 //    between primitives falls below a tenth of the smallest at its start.
 // 2b. The near pairs' list that evaluations reuse: the sheet folded 2.5 d̂ apart, moved
 //    as a whole by 13 d̂ (the list is kept), then its upper half 0.5 d̂ above the lower
-//    one (a relative motion of 2 d̂: pairs the list does not hold come within d̂). The
-//    kept term's energy equals a new term's (1e-14; a list kept too long gives 0.014).
+//    one (a relative motion of 2 d̂: pairs the list does not hold come within d̂), then
+//    0.45 and 0.4 d̂ (a list made and kept). The kept term's energy equals a new
+//    term's (1e-14; a list kept too long gives 0.014).
 // 3. Whole runs, every written frame checked for intersecting triangle pairs (Output/
 //    Check intersections) and every step's self_contact_min_distance > 0: the strip pile
 //    (params/contact/strip-pile.prm, 1.5 s as shipped) and the sheet falling onto the
@@ -223,7 +224,7 @@ namespace
     // Folded 2.5 d̂ apart (no pair between the layers on the list), then moved as a
     // whole by 13 d̂ (a translation keeps the list), then also the upper half down to
     // 0.5 d̂ above the lower one (a relative motion of 2 d̂: pairs come within d̂ that
-    // were not on the list, so it must be made again).
+    // were not on the list, so it must not be kept).
     fold(model, 2.5 * d_hat, u); // nonzero exactly on the upper half
     at          = u;
     bool passed = check_equal(pcout, "folded 2.5 d̂ apart: energy", energy(kept), 0.);
@@ -240,19 +241,24 @@ namespace
     };
     at = shifted(u);
     passed &= check_equal(pcout, "moved as a whole: energy", energy(kept), 0.);
-    VectorType closer;
-    model.initialize_owned(closer);
-    fold(model, 0.5 * d_hat, closer);
-    at                  = shifted(closer);
-    const double reused = energy(kept);
-    const double fresh =
-      energy(physics::SelfContact(settings, model.get_discretization(), masses));
-    passed &= check_above(pcout, "layers 0.5 d̂ apart: energy, J", fresh, 0.);
-    passed &= check_near(pcout,
-                         "layers 0.5 d̂ apart: energy of the kept term / a new one's",
-                         reused / fresh,
-                         1.,
-                         1e-14);
+    // Then closer, by steps small enough for a list made at one to hold the next.
+    for (const double gap : {0.5, 0.45, 0.4})
+      {
+        VectorType closer;
+        model.initialize_owned(closer);
+        fold(model, gap * d_hat, closer);
+        at                  = shifted(closer);
+        const double reused = energy(kept);
+        const double fresh =
+          energy(physics::SelfContact(settings, model.get_discretization(), masses));
+        const std::string what = "layers " + std::to_string(gap) + " d̂ apart: ";
+        passed &= check_above(pcout, what + "energy, J", fresh, 0.);
+        passed &= check_near(pcout,
+                             what + "energy of the kept term / a new one's",
+                             reused / fresh,
+                             1.,
+                             1e-14);
+      }
     return passed;
   }
 

@@ -235,7 +235,11 @@ namespace clothsim::physics
   {
     // The pairs closer than the margin m at the cached state hold every pair closer
     // than `reach` at any state whose vertices have moved by at most (m - reach)/2 from
-    // it, less a common translation (a falling sheet keeps its list).
+    // it, less a common translation (a falling sheet keeps its list). Where consecutive
+    // states are farther apart than that (cloth wrapping an obstacle moves by more in
+    // every Newton iteration), a list would be made at every call: the pairs whose boxes
+    // come within `reach` are then taken directly, and a list is made again once a call
+    // finds the state close to the one before.
     const double margin = 2. * settings.thickness;
     if (reach > margin)
       return false;
@@ -246,12 +250,16 @@ namespace clothsim::physics
                    : largest_relative_motion(near_from.size(), [&](const unsigned int p) {
             return cloth.position(p, u_local) - near_from[p];
           });
-    if (2. * moved > margin - reach)
+    const bool close = 2. * moved <= margin - reach;
+    if (!close || !near_listed)
       {
         near_pairs.clear();
-        for_each_pair(u_local, nullptr, margin, [&](const Pair &pair) {
-          if (pair_squared_distance(pair.kind, pair_points(pair, u_local)) <
-              margin * margin)
+        near_listed      = close;
+        const double gap = close ? margin : reach;
+        for_each_pair(u_local, nullptr, gap, [&](const Pair &pair) {
+          const PairPoints x = pair_points(pair, u_local);
+          if (close ? pair_squared_distance(pair.kind, x) < gap * gap
+                    : !boxes_apart(pair.kind, x, gap))
             {
               near_pairs.push_back(pair);
               near_pairs.back().coupled = pair_coupled(pair);
@@ -487,6 +495,7 @@ namespace clothsim::physics
       step[i] = 2. * (motions[i] - positions[i]);
     const double d_hat = settings.thickness;
     near_from.clear(); // the couplings of the near pairs may change
+    near_listed = false;
 
     std::unordered_set<std::uint64_t> needed;
     for_each_pair(u_local, step.data(), 2. * d_hat, [&](const Pair &pair) {

@@ -190,7 +190,8 @@ namespace clothsim::physics
     // Calls `visit` for every pair that may be closer than `reach` at u: from a list of
     // the pairs closer than 2 d̂ at an earlier state, kept while no vertex has moved by
     // more than (2 d̂ - reach)/2 from it, less the motions' common part (else made again
-    // here). Returns false (visiting none) if `reach` exceeds 2 d̂.
+    // here, or, where the last call's state was that far too, the pairs whose boxes are
+    // within `reach` taken alone). Returns false (visiting none) if `reach` exceeds 2 d̂.
     bool
     for_each_near_pair(const double                            *u_local,
                        const double                             reach,
@@ -257,8 +258,11 @@ namespace clothsim::physics
     mutable std::vector<Box> boxes;
     mutable bool             rebuild_trees = true;
     // for_each_near_pair's list and the positions it was made at.
+    // (`near_listed`: a list for any reach up to 2 d̂; else the pairs within the last
+    // call's reach only.)
     mutable std::vector<Pair>     near_pairs;
     mutable std::vector<Point<3>> near_from;
+    mutable bool                  near_listed = false;
     // add_to_step's sums per vertex and per coupled pair of vertices (key(a, b), a < b:
     // the block of a's rows and b's columns).
     mutable std::vector<Tensor<1, 3>>                       vertex_gradient;
