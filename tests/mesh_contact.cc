@@ -21,7 +21,9 @@
 // 4. The line search's cap (pair_step_bound) on 2,000 random paths, many crossing:
 //    the distance stays at or above the fraction of its start along the whole capped
 //    path (sampled at 1,000 points); the same for the distance less an offset.
-// 5. The bounding-volume hierarchy finds exactly the overlapping boxes of 5,000.
+// 5. The bounding-volume hierarchy finds exactly the overlapping boxes of 5,000; both
+//    hierarchies descended at once give the pairs within a margin of these and 1,000
+//    more boxes, and of these alone, each once, as testing every pair does.
 // 6. The contact and friction terms of a sheet 2 mm above the apex of a pyramid mesh
 //    (its apex vertex against cloth triangles, its edges against cloth edges, cloth
 //    vertices against its faces): the step potential's gradient and Hessian against
@@ -553,7 +555,50 @@ namespace
         found_total += found.size();
       }
     pcout << "  " << found_total << " overlaps found in 200 queries" << std::endl;
-    return check_equal(pcout, "queries with a wrong answer", wrong, 0u);
+    bool passed = check_equal(pcout, "queries with a wrong answer", wrong, 0u);
+
+    // Both hierarchies descended at once: the pairs of these boxes and 1,000 others
+    // within a margin, and the pairs i < j of these boxes alone, each once, as all
+    // pairs tested one by one.
+    std::vector<physics::Box> others;
+    for (unsigned int k = 0; k < 1000; ++k)
+      {
+        const Point<3> a(u(random), u(random), u(random));
+        others.push_back(physics::Box::around(std::array<Point<3>, 1>{{a}}));
+      }
+    const physics::AabbTree other_tree(others);
+    const double            margin = 0.01;
+    using Pairs                    = std::vector<std::pair<unsigned int, unsigned int>>;
+    Pairs between, within, between_brute, within_brute;
+    tree.for_each_overlap(other_tree, margin, [&](unsigned int i, unsigned int j) {
+      between.emplace_back(i, j);
+    });
+    tree.for_each_overlap(margin, [&](unsigned int i, unsigned int j) {
+      within.emplace_back(i, j);
+    });
+    for (unsigned int i = 0; i < boxes.size(); ++i)
+      {
+        for (unsigned int j = 0; j < others.size(); ++j)
+          if (boxes[i].within(others[j], margin))
+            between_brute.emplace_back(i, j);
+        for (unsigned int j = i + 1; j < boxes.size(); ++j)
+          if (boxes[i].within(boxes[j], margin))
+            within_brute.emplace_back(i, j);
+      }
+    std::sort(between.begin(), between.end());
+    std::sort(within.begin(), within.end());
+    pcout << "  " << between_brute.size() << " and " << within_brute.size()
+          << " pairs within the margin" << std::endl;
+    passed &= check_above(pcout, "pairs between the two sets", between_brute.size(), 100);
+    passed &= check_equal(pcout,
+                          "pairs between the two sets, all found once",
+                          between == between_brute,
+                          true);
+    passed &= check_equal(pcout,
+                          "pairs within one set, all found once",
+                          within == within_brute,
+                          true);
+    return passed;
   }
 
   // A flat pyramid, 2 cm high on a 0.4 m square, its apex at `apex`.

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 namespace clothsim::physics
@@ -73,6 +74,23 @@ namespace clothsim::physics
           return false;
       return true;
     }
+
+    // The sum of the box's extents along the axes.
+    double
+    size() const
+    {
+      return (upper[0] - lower[0]) + (upper[1] - lower[1]) + (upper[2] - lower[2]);
+    }
+
+    // Whether this box grown by `margin` overlaps `other`.
+    bool
+    within(const Box &other, const double margin) const
+    {
+      for (unsigned int d = 0; d < 3; ++d)
+        if (lower[d] - margin > other.upper[d] || other.lower[d] - margin > upper[d])
+          return false;
+      return true;
+    }
   };
 
   class AabbTree
@@ -90,6 +108,27 @@ namespace clothsim::physics
     // Appends to `found` the index of every box that overlaps `query`.
     void
     find(const Box &query, std::vector<unsigned int> &found) const;
+
+    // Calls visit(i, j) for every stored box i and every box j of `other` within
+    // `margin` of each other (Box::within), descending both hierarchies at once: a pair
+    // of nodes apart is never opened, so each box is not looked up from the root. The
+    // order is fixed by the two hierarchies. `margin` is read at every test.
+    template <typename Visit>
+    void
+    for_each_overlap(const AabbTree &other,
+                     const double   &margin,
+                     const Visit    &visit) const
+    {
+      descend(other, false, margin, visit);
+    }
+
+    // The same within this hierarchy: every pair i < j of its boxes within `margin`.
+    template <typename Visit>
+    void
+    for_each_overlap(const double &margin, const Visit &visit) const
+    {
+      descend(*this, true, margin, visit);
+    }
 
     // The smallest exact(k) over the stored boxes k, below `bound` (else `bound`):
     // branch and bound, a subtree skipped when lower(box) of its box is not below the
@@ -135,6 +174,68 @@ namespace clothsim::physics
 
     unsigned int
     build(const unsigned int first, const unsigned int count);
+
+    template <typename Visit>
+    void
+    descend(const AabbTree &other,
+            const bool      self,
+            const double   &margin,
+            const Visit    &visit) const
+    {
+      if (nodes.empty() || other.nodes.empty())
+        return;
+      std::vector<std::pair<unsigned int, unsigned int>> stack = {{0u, 0u}};
+      while (!stack.empty())
+        {
+          const auto [a, b] = stack.back();
+          stack.pop_back();
+          const Node &A = nodes[a], &B = other.nodes[b];
+          if (self && a == b)
+            {
+              if (A.count > 0)
+                {
+                  for (unsigned int i = A.first; i < A.first + A.count; ++i)
+                    for (unsigned int j = i + 1; j < A.first + A.count; ++j)
+                      if (boxes[order[i]].within(boxes[order[j]], margin))
+                        visit(std::min(order[i], order[j]), std::max(order[i], order[j]));
+                }
+              else
+                {
+                  stack.emplace_back(A.right, A.right);
+                  stack.emplace_back(A.left, A.right);
+                  stack.emplace_back(A.left, A.left);
+                }
+              continue;
+            }
+          if (!A.box.within(B.box, margin))
+            continue;
+          if (A.count > 0 && B.count > 0)
+            {
+              for (unsigned int i = A.first; i < A.first + A.count; ++i)
+                for (unsigned int j = B.first; j < B.first + B.count; ++j)
+                  if (boxes[order[i]].within(other.boxes[other.order[j]], margin))
+                    {
+                      if (self)
+                        visit(std::min(order[i], other.order[j]),
+                              std::max(order[i], other.order[j]));
+                      else
+                        visit(order[i], other.order[j]);
+                    }
+            }
+          else if (B.count > 0 || (A.count == 0 && A.box.size() >= B.box.size()))
+            {
+              // Open this hierarchy's node: the other's is a leaf, or both are inner
+              // nodes and this one's box is the larger (this one on a tie).
+              stack.emplace_back(A.right, b);
+              stack.emplace_back(A.left, b);
+            }
+          else
+            {
+              stack.emplace_back(a, B.right);
+              stack.emplace_back(a, B.left);
+            }
+        }
+    }
 
     std::vector<Box>          boxes;
     std::vector<Node>         nodes;

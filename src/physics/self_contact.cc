@@ -178,53 +178,42 @@ namespace clothsim::physics
     for (const auto &edge : cloth.edges)
       boxes.push_back(box_of(edge, 0.));
     fit(edge_tree, boxes);
+    boxes.clear();
+    for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
+      boxes.push_back(box_of(std::array<unsigned int, 1>{{p}}, 0.));
+    fit(vertex_tree, boxes);
     rebuild_trees = false;
+    Pair pair;
 
-    std::vector<unsigned int> found;
-    Pair                      pair;
-
-    // Vertices against triangles.
+    // Vertices against triangles, both hierarchies descended at once.
     pair.kind      = PairKind::point_triangle;
     pair.threshold = 0.;
-    for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
-      {
-        found.clear();
-        triangle_tree.find(box_of(std::array<unsigned int, 1>{{p}}, margin), found);
-        for (const unsigned int t : found)
-          {
-            const auto &triangle = cloth.triangles[t];
-            if (triangle[0] == p || triangle[1] == p || triangle[2] == p)
-              continue;
-            pair.index = {{p, triangle[0], triangle[1], triangle[2]}};
-            pair.kappa =
-              0.25 *
-              (mass(p) + mass(triangle[0]) + mass(triangle[1]) + mass(triangle[2])) *
-              a_per_d;
-            if (touches_owned(pair))
-              visit(pair);
-          }
-      }
+    vertex_tree.for_each_overlap(
+      triangle_tree, margin, [&](const unsigned int p, const unsigned int t) {
+        const auto &triangle = cloth.triangles[t];
+        if (triangle[0] == p || triangle[1] == p || triangle[2] == p)
+          return;
+        pair.index = {{p, triangle[0], triangle[1], triangle[2]}};
+        pair.kappa =
+          0.25 * (mass(p) + mass(triangle[0]) + mass(triangle[1]) + mass(triangle[2])) *
+          a_per_d;
+        if (touches_owned(pair))
+          visit(pair);
+      });
 
-    // Edges against edges, each pair once.
+    // Edges against edges, each pair once (e < k).
     pair.kind = PairKind::edge_edge;
-    for (unsigned int e = 0; e < cloth.edges.size(); ++e)
-      {
-        const auto [a, b] = cloth.edges[e];
-        found.clear();
-        edge_tree.find(box_of(cloth.edges[e], margin), found);
-        for (const unsigned int k : found)
-          {
-            const auto [c, d] = cloth.edges[k];
-            if (k <= e || c == a || c == b || d == a || d == b)
-              continue;
-            pair.index = {{a, b, c, d}};
-            pair.kappa = 0.25 * (mass(a) + mass(b) + mass(c) + mass(d)) * a_per_d;
-            pair.threshold =
-              mollifier_threshold(cloth.edge_length[e], cloth.edge_length[k]);
-            if (touches_owned(pair))
-              visit(pair);
-          }
-      }
+    edge_tree.for_each_overlap(margin, [&](const unsigned int e, const unsigned int k) {
+      const auto [a, b] = cloth.edges[e];
+      const auto [c, d] = cloth.edges[k];
+      if (c == a || c == b || d == a || d == b)
+        return;
+      pair.index     = {{a, b, c, d}};
+      pair.kappa     = 0.25 * (mass(a) + mass(b) + mass(c) + mass(d)) * a_per_d;
+      pair.threshold = mollifier_threshold(cloth.edge_length[e], cloth.edge_length[k]);
+      if (touches_owned(pair))
+        visit(pair);
+    });
   }
 
 
@@ -262,7 +251,9 @@ namespace clothsim::physics
                     : !boxes_apart(pair.kind, x, gap))
             {
               near_pairs.push_back(pair);
-              near_pairs.back().coupled = pair_coupled(pair);
+              // Looked up once for a list that evaluations reuse; else where needed.
+              if (close)
+                near_pairs.back().coupled = pair_coupled(pair);
             }
         });
         near_from.resize(cloth.vertices.size());
@@ -360,7 +351,7 @@ namespace clothsim::physics
         return;
       // Off the diagonal only where the sparsity has the coupling (else the block
       // diagonal alone: that of a positive semi-definite matrix is one too).
-      if (!pair.coupled)
+      if (!(near_listed ? pair.coupled : pair_coupled(pair)))
         {
           dropped += couple_pairs ? 1 : 0;
           return;

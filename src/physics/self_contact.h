@@ -5,8 +5,9 @@
 // vertex pays the pair barrier κ m(x) s(d) (physics/pair_barrier.h, all four points
 // moving) while closer than the contact thickness d̂, with κ = m̄ a_b / d̂ and m̄ the mean
 // lumped mass of the pair's four vertices. Candidates come from bounding-volume
-// hierarchies of the cloth's triangles and edges (physics/aabb_tree.h), built at every
-// evaluation around the positions it is given. Newton's line search is capped by
+// hierarchies of the cloth's vertices, triangles and edges (physics/aabb_tree.h),
+// refitted at every evaluation to the positions it is given and descended two at once
+// (vertices against triangles, edges against edges). Newton's line search is capped by
 // continuous collision detection of every pair whose swept boxes meet
 // (pair_step_bound): no iterate passes through the cloth.
 //
@@ -167,7 +168,7 @@ namespace clothsim::physics
       std::array<unsigned int, 4> index; // into cloth.vertices, in PairPoints order
       double                      kappa;
       double                      threshold; // the mollifier's (edge-edge), else 0
-      bool coupled = true; // all its vertices coupled in the sparsity (near pairs only)
+      bool coupled = true; // all its vertices coupled in the sparsity (listed pairs only)
     };
 
     PairPoints
@@ -253,8 +254,9 @@ namespace clothsim::physics
     std::vector<unsigned int>         piece;           // per vertex: its connected piece
     std::unordered_set<std::uint64_t> extra_couplings; // of the pairs, see above
     mutable unsigned long             dropped = 0;
-    // Bounding-volume hierarchies of the triangles and the edges, and their boxes.
-    mutable AabbTree         triangle_tree, edge_tree;
+    // Bounding-volume hierarchies of the triangles, the edges and the vertices, and
+    // their boxes.
+    mutable AabbTree         triangle_tree, edge_tree, vertex_tree;
     mutable std::vector<Box> boxes;
     mutable bool             rebuild_trees = true;
     // for_each_near_pair's list and the positions it was made at.
