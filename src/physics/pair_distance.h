@@ -16,7 +16,10 @@
 
 #include <deal.II/base/point.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 
 namespace clothsim::physics
 {
@@ -144,6 +147,37 @@ namespace clothsim::physics
             return height * height / dot(n, n);
           }
       }
+  }
+
+
+  // The largest |m(p) - c| over points p < n, c the centre of the box around all their
+  // motions m(p). Distances do not change when every point moves by the same c, so this
+  // bounds how far the motions can change the distance of any pair (by at most twice
+  // it): a falling sheet's translation moves none.
+  template <typename Motion>
+  double
+  largest_relative_motion(const unsigned int n, const Motion &motion)
+  {
+    Tensor<1, 3> low, high;
+    for (unsigned int d = 0; d < 3; ++d)
+      {
+        low[d]  = std::numeric_limits<double>::infinity();
+        high[d] = -std::numeric_limits<double>::infinity();
+      }
+    for (unsigned int p = 0; p < n; ++p)
+      {
+        const Tensor<1, 3> m = motion(p);
+        for (unsigned int d = 0; d < 3; ++d)
+          {
+            low[d]  = std::min(low[d], m[d]);
+            high[d] = std::max(high[d], m[d]);
+          }
+      }
+    const Tensor<1, 3> centre  = (low + high) / 2.;
+    double             largest = 0.;
+    for (unsigned int p = 0; p < n; ++p)
+      largest = std::max(largest, (motion(p) - centre).norm_square());
+    return std::sqrt(largest);
   }
 
 

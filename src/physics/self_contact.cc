@@ -41,35 +41,6 @@ namespace clothsim::physics
       const double         nested;
       Clock::time_point    start;
     };
-
-    // The largest |m(p) - c| over p < n, c the centre of the box around all m(p). Pair
-    // distances do not change when every vertex moves by the same c, so this bounds how
-    // far motions m(p) can change any pair's distance (by at most twice it).
-    template <typename Motion>
-    double
-    largest_relative_motion(const unsigned int n, const Motion &motion)
-    {
-      Tensor<1, 3> low, high;
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          low[d]  = std::numeric_limits<double>::infinity();
-          high[d] = -std::numeric_limits<double>::infinity();
-        }
-      for (unsigned int p = 0; p < n; ++p)
-        {
-          const Tensor<1, 3> m = motion(p);
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              low[d]  = std::min(low[d], m[d]);
-              high[d] = std::max(high[d], m[d]);
-            }
-        }
-      const Tensor<1, 3> centre  = (low + high) / 2.;
-      double             largest = 0.;
-      for (unsigned int p = 0; p < n; ++p)
-        largest = std::max(largest, (motion(p) - centre).norm_square());
-      return std::sqrt(largest);
-    }
   } // namespace
 
 
