@@ -91,40 +91,59 @@ namespace clothsim::physics
     const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
     const std::vector<RigidPose> poses = poses_at(step.time);
 
-    const bool         derivatives = gradient != nullptr || hessian != nullptr;
-    double             value       = 0.;
-    Vector<double>     g(3);
-    FullMatrix<double> H(3, 3);
+    const bool            derivatives = gradient != nullptr || hessian != nullptr;
+    double                value       = 0.;
+    Vector<double>        g(3);
+    FullMatrix<double>    H(3, 3);
+    std::array<double, 9> hessian_rows;
     std::vector<types::global_dof_index> dofs(3);
-    for (const Vertex &vertex : table)
+    if (hessian != nullptr)
+      vertex_scatter.start(*hessian, table.size(), 3);
+    for (unsigned int k = 0; k < table.size(); ++k)
       {
-        const Point<3> x = position(vertex, local);
+        const Vertex  &vertex = table[k];
+        const Point<3> x      = position(vertex, local);
+        bool           near   = false;
+        g                     = 0.;
+        hessian_rows.fill(0.);
         for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
             if (is_mesh(o))
               continue;
-            const SignedDistance d = obstacles[o].distance(poses[o], x, derivatives);
-            if (d.value >= d_hat)
+            // The value alone first: most vertices are beyond d̂.
+            double distance = obstacles[o].distance(poses[o], x, false).value;
+            if (distance >= d_hat)
               continue;
-            value += vertex.kappa * contact::barrier(d.value, d_hat);
-            if (!derivatives || d.value <= 0.)
+            value += vertex.kappa * contact::barrier(distance, d_hat);
+            if (!derivatives || distance <= 0.)
               continue;
+            const SignedDistance d = obstacles[o].distance(poses[o], x, true);
             const double first  = vertex.kappa * contact::barrier_first(d.value, d_hat);
             const double second = vertex.kappa * contact::barrier_second(d.value, d_hat);
-            std::copy(vertex.dofs.begin(), vertex.dofs.end(), dofs.begin());
+            near                = true;
             for (unsigned int i = 0; i < 3; ++i)
               {
-                g[i] = first * d.gradient[i];
+                g[i] += first * d.gradient[i];
                 for (unsigned int j = 0; j < 3; ++j)
                   // κ (s'' ∇d ∇dᵀ + s' ∇²d); s' <= 0 and ∇²d >= 0 make the second
                   // part negative semi-definite: the projected tangent drops it.
-                  H(i, j) = second * d.gradient[i] * d.gradient[j] +
-                            (step.projected_tangent ? 0. : first * d.hessian[i][j]);
+                  hessian_rows[3 * i + j] +=
+                    second * d.gradient[i] * d.gradient[j] +
+                    (step.projected_tangent ? 0. : first * d.hessian[i][j]);
               }
-            if (gradient != nullptr)
-              constraints.distribute_local_to_global(g, dofs, *gradient);
-            if (hessian != nullptr)
-              constraints.distribute_local_to_global(H, dofs, *hessian);
+          }
+        if (!near)
+          continue;
+        std::copy(vertex.dofs.begin(), vertex.dofs.end(), dofs.begin());
+        if (gradient != nullptr)
+          constraints.distribute_local_to_global(g, dofs, *gradient);
+        if (hessian != nullptr &&
+            !vertex_scatter.add(k, dofs, hessian_rows.data(), 3, constraints))
+          {
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                H(i, j) = hessian_rows[3 * i + j];
+            constraints.distribute_local_to_global(H, dofs, *hessian);
           }
       }
     if (!mesh_pairs.empty())

@@ -12,6 +12,7 @@
 // and tangent plane of every contact) for physics/friction_term.h.
 
 #include "mesh/discretization.h"
+#include "mesh/element_matrix_scatter.h"
 #include "physics/mesh_contact.h"
 #include "physics/obstacle.h"
 #include "physics/term.h"
@@ -294,9 +295,11 @@ namespace clothsim::physics
     std::vector<Point<3>>  carried_points;
     std::vector<RigidPose> start_poses, end_poses;
     // Triangle-mesh obstacles (by primitive pairs) and the step's start (ghosted).
-    MeshContact    mesh_pairs;
-    VectorType     step_start;
-    double         last_dt    = 0.;
-    mutable double state_time = 0.; // of the last step assembled
+    MeshContact mesh_pairs;
+    // The vertices' barrier Hessians added by position (vertex k is element k).
+    mutable mesh::ElementMatrixScatter vertex_scatter;
+    VectorType                         step_start;
+    double                             last_dt    = 0.;
+    mutable double                     state_time = 0.; // of the last step assembled
   };
 } // namespace clothsim::physics

@@ -4,6 +4,7 @@
 
 #include <Sacado.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -261,6 +262,8 @@ namespace clothsim::physics
           n += 3;
         }
     result.n = n;
+    if (hessian)
+      std::fill(result.hessian.begin(), result.hessian.begin() + n * n, 0.);
     for (unsigned int a = 0; a < m; ++a)
       for (unsigned int c = 0; c < 3; ++c)
         {

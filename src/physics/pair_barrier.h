@@ -30,10 +30,12 @@ namespace clothsim::physics
 {
   struct PairBarrier
   {
-    double                  value = 0.;
-    unsigned int            n     = 0; // derivative entries: 3 per moving point, in order
-    std::array<double, 12>  gradient{};
-    std::array<double, 144> hessian{}; // n x n, row-major
+    double                 value = 0.;
+    unsigned int           n     = 0; // derivative entries: 3 per moving point, in order
+    std::array<double, 12> gradient{};
+    // n x n, row-major; only those entries are set (a pair beyond d̂ has n = 0 and costs
+    // no zeroing of the whole array).
+    std::array<double, 144> hessian;
   };
 
   // How the Hessian (order 2) is formed.
