@@ -231,9 +231,10 @@ namespace clothsim::physics
     const double       d_hat = settings.thickness;
     const unsigned int order = hessian != nullptr ? 2 : gradient != nullptr ? 1 : 0;
     double             value = 0.;
-    Vector<double>     g;
     FullMatrix<double> H;
     std::vector<types::global_dof_index> dofs;
+    vertex_gradient.resize(cloth.vertices.size());
+    touched.resize(cloth.vertices.size(), false);
     if (hessian != nullptr)
       for (unsigned int k = 0; k < 3; ++k)
         pair_scatters[k].start(*hessian,
@@ -261,16 +262,23 @@ namespace clothsim::physics
       value += b.value;
       if (b.n == 0 || !std::isfinite(b.value))
         return;
-      g.reinit(b.n);
       dofs.clear();
-      for (unsigned int i = 0; i < 4; ++i)
+      for (unsigned int i = 0, k = 0; i < 4; ++i)
         if (pair.moving[i])
-          for (unsigned int c = 0; c < 3; ++c)
-            dofs.push_back(cloth.vertices[pair.index[i]].dofs[c]);
-      for (unsigned int i = 0; i < b.n; ++i)
-        g[i] = b.gradient[i];
-      if (gradient != nullptr)
-        constraints.distribute_local_to_global(g, dofs, *gradient);
+          {
+            const unsigned int p = pair.index[i];
+            for (unsigned int c = 0; c < 3; ++c)
+              dofs.push_back(cloth.vertices[p].dofs[c]);
+            if (gradient == nullptr)
+              continue;
+            if (!touched[p])
+              {
+                touched[p] = true;
+                touched_vertices.push_back(p);
+              }
+            for (unsigned int c = 0; c < 3; ++c)
+              vertex_gradient[p][c] += b.gradient[k++];
+          }
       if (hessian != nullptr &&
           !pair_scatters[b.n / 3 - 1].add(
             pair.primitive, dofs, b.hessian.data(), b.n, constraints))
@@ -282,6 +290,22 @@ namespace clothsim::physics
           constraints.distribute_local_to_global(H, dofs, *hessian);
         }
     });
+    // Each vertex's sum over its pairs (about six per vertex on a sheet lying on a
+    // sphere) distributed once.
+    Vector<double> g(3);
+    dofs.resize(3);
+    for (const unsigned int p : touched_vertices)
+      {
+        for (unsigned int c = 0; c < 3; ++c)
+          {
+            dofs[c] = cloth.vertices[p].dofs[c];
+            g[c]    = vertex_gradient[p][c];
+          }
+        constraints.distribute_local_to_global(g, dofs, *gradient);
+        vertex_gradient[p] = Tensor<1, 3>();
+        touched[p]         = false;
+      }
+    touched_vertices.clear();
     return value;
   }
 

@@ -189,6 +189,11 @@ namespace clothsim::physics
     // The pairs' Hessians added by position, per cloth primitive: its vertices',
     // edges' and triangles' (one, two and three moving points).
     mutable std::array<mesh::ElementMatrixScatter, 3> pair_scatters;
+    // add_to_step's gradient summed per cloth vertex (zero between calls), the
+    // vertices it touched and the list of them.
+    mutable std::vector<Tensor<1, 3>> vertex_gradient;
+    mutable std::vector<bool>         touched;
+    mutable std::vector<unsigned int> touched_vertices;
     // for_each_near_pair's list, the cloth's positions and the poses it was made at.
     mutable std::vector<Pair>      near_pairs;
     mutable std::vector<Point<3>>  near_from;
