@@ -202,10 +202,12 @@ namespace clothsim::physics
       {
         near_pairs.clear();
         for_each_pair(u_local, nullptr, poses, margin, [&](const Pair &pair) {
-          const PairPoints x = pair_points(pair, u_local, poses[pair.obstacle]);
-          const double     r = offset(pair.obstacle);
-          if (pair_distance_lower_bound(pair.kind, x) - r < margin &&
-              std::sqrt(pair_squared_distance(pair.kind, x)) - r < margin)
+          const double d =
+            std::sqrt(
+              pair_squared_distance(pair.kind,
+                                    pair_points(pair, u_local, poses[pair.obstacle]))) -
+            offset(pair.obstacle);
+          if (d < margin)
             near_pairs.push_back(pair);
         });
         near_from.resize(cloth.vertices.size());

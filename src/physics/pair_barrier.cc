@@ -114,13 +114,10 @@ namespace clothsim::physics
                const bool                 gauss_newton_mollified,
                const double               offset)
   {
-    const bool  hessian = order >= 2;
-    PairBarrier result;
-    // Beyond d̂ by the cheap bound: the barrier and its derivatives are zero.
-    if (pair_distance_lower_bound(kind, x) - offset >= d_hat)
-      return result;
-    const DistanceType type = distance_type(kind, x);
-    const double       d    = std::sqrt(squared_distance(type, x)) - offset;
+    const bool         hessian = order >= 2;
+    const DistanceType type    = distance_type(kind, x);
+    PairBarrier        result;
+    const double       d = std::sqrt(squared_distance(type, x)) - offset;
     if (d >= d_hat || d <= 0.)
       {
         result.value = kappa * contact::barrier(d, d_hat);

@@ -191,37 +191,6 @@ namespace clothsim::physics
 
 
   double
-  pair_distance_lower_bound(const PairKind kind, const PairPoints &x)
-  {
-    // |v·n| / |n|: for a point and a triangle v = p - t0, n = (t1 - t0) × (t2 - t0);
-    // for two edges v = b0 - a0, n = (a1 - a0) × (b1 - b0). In plain doubles.
-    const bool  point = kind == PairKind::point_triangle;
-    const auto &o     = point ? x[1] : x[0];
-    const auto &e0    = point ? x[2] : x[1];
-    const auto &f0    = point ? x[1] : x[2];
-    const auto &f1    = point ? x[3] : x[3];
-    const auto &w     = point ? x[0] : x[2];
-    double      a[3], b[3], v[3];
-    for (unsigned int d = 0; d < 3; ++d)
-      {
-        a[d] = e0[d] - o[d];
-        b[d] = f1[d] - f0[d];
-        v[d] = w[d] - o[d];
-      }
-    const double n[3] = {a[1] * b[2] - a[2] * b[1],
-                         a[2] * b[0] - a[0] * b[2],
-                         a[0] * b[1] - a[1] * b[0]};
-    const double nn   = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    const double aa   = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
-    const double bb   = b[0] * b[0] + b[1] * b[1] + b[2] * b[2];
-    if (!(nn > 1e-12 * aa * bb))
-      return 0.;
-    const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
-    return (1. - 1e-12) * std::abs(vn) / std::sqrt(nn);
-  }
-
-
-  double
   pair_motion_bound(const PairKind kind, const PairPoints &dx)
   {
     // The largest motion of a point of the first primitive plus that of the second,
@@ -246,9 +215,6 @@ namespace clothsim::physics
                   const double      offset)
   {
     const double L = pair_motion_bound(kind, dx);
-    // Far enough by the cheap bound: the test below would pass too.
-    if (L <= (1. - fraction) * (pair_distance_lower_bound(kind, x) - offset))
-      return 1.;
 
     const double d0  = std::sqrt(pair_squared_distance(kind, x)) - offset;
     const double gap = fraction * d0;

@@ -181,14 +181,6 @@ namespace clothsim::physics
   }
 
 
-  // A lower bound on the pair's distance (m), a few operations instead of the distance
-  // type's candidates: a point's distance from the triangle's plane, or the distance
-  // between the edges' lines; 0 for a degenerate triangle or nearly parallel edges.
-  // Lowered by 1e-12 of itself, so that rounding cannot lift it above the distance:
-  // a test that it passes is passed by the distance too.
-  double
-  pair_distance_lower_bound(const PairKind kind, const PairPoints &x);
-
   // A bound L on how fast the pair's distance changes along the straight path x + s dx:
   // |d(s) - d(0)| <= L s. L is the largest motion of a point of one primitive plus that
   // of the other, after the four points' mean motion (which moves no distance) is taken
