@@ -104,14 +104,12 @@ namespace clothsim::physics
         const Vertex  &vertex = table[k];
         const Point<3> x      = position(vertex, local);
         bool           near   = false;
-        g                     = 0.;
-        hessian_rows.fill(0.);
         for (unsigned int o = 0; o < obstacles.size(); ++o)
           {
             if (is_mesh(o))
               continue;
             // The value alone first: most vertices are beyond d̂.
-            double distance = obstacles[o].distance(poses[o], x, false).value;
+            const double distance = obstacles[o].distance(poses[o], x, false).value;
             if (distance >= d_hat)
               continue;
             value += vertex.kappa * contact::barrier(distance, d_hat);
@@ -120,7 +118,12 @@ namespace clothsim::physics
             const SignedDistance d = obstacles[o].distance(poses[o], x, true);
             const double first  = vertex.kappa * contact::barrier_first(d.value, d_hat);
             const double second = vertex.kappa * contact::barrier_second(d.value, d_hat);
-            near                = true;
+            if (!near) // the sums, zeroed only for the vertices within d̂
+              {
+                g = 0.;
+                hessian_rows.fill(0.);
+                near = true;
+              }
             for (unsigned int i = 0; i < 3; ++i)
               {
                 g[i] += first * d.gradient[i];
