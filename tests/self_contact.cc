@@ -16,7 +16,10 @@
 //    as a whole by 13 d̂ (the list is kept), then its upper half 0.5 d̂ above the lower
 //    one (a relative motion of 2 d̂: pairs the list does not hold come within d̂), then
 //    0.45 and 0.4 d̂ (a list made and kept). The kept term's energy equals a new
-//    term's (1e-14; a list kept too long gives 0.014).
+//    term's (1e-14; a list kept too long gives 0.014). From the list made 2.5 d̂ apart,
+//    a patch of about 20 vertices of the upper half brought down to 0.5 d̂ (the list is
+//    kept, the patch's pairs looked up anew): the energy and the step cap of pushing the
+//    patch on by 0.6 d̂ equal a new term's (1e-14).
 // 3. Whole runs, every written frame checked for intersecting triangle pairs (Output/
 //    Check intersections) and every step's self_contact_min_distance > 0: the strip pile
 //    (params/contact/strip-pile.prm, 1.5 s as shipped) and the sheet falling onto the
@@ -56,9 +59,11 @@ namespace
   const std::string sphere_scene = "params/contact/sheet-on-sphere.prm";
   const std::string mesh_21      = "Mesh/Mesh file=../../meshes/swing-21.msh";
 
-  // The folded sheet's displacement (owned).
+  // The folded sheet's displacement (owned), its upper half gap(X) above the lower one.
   void
-  fold(const ClothModel &model, const double gap, VectorType &u)
+  fold(const ClothModel                              &model,
+       const std::function<double(const Point<3> &)> &gap_at,
+       VectorType                                    &u)
   {
     const double h    = 0.05;
     const auto  &mesh = model.get_discretization();
@@ -72,11 +77,20 @@ namespace
           // sits where the pair's distance type changes, and its Hessian jumps).
           const Point<3> x(X[0] + 0.31 * h,
                            1. - X[1] + 0.17 * h,
-                           gap * (1. + 0.1 / 0.6 * std::sin(17. * X[0] + 11. * X[1])));
+                           gap_at(X) *
+                             (1. + 0.1 / 0.6 * std::sin(17. * X[0] + 11. * X[1])));
           for (unsigned int c = 0; c < 3; ++c)
             u[element.dofs[3 * v + c]] = x[c] - X[c];
         }
     u.compress(VectorOperation::insert);
+  }
+
+  // The same with one gap everywhere.
+  void
+  fold(const ClothModel &model, const double gap, VectorType &u)
+  {
+    fold(
+      model, [gap](const Point<3> &) { return gap; }, u);
   }
 
   bool
@@ -259,6 +273,56 @@ namespace
                              1.,
                              1e-14);
       }
+
+    // From the list made 2.5 d̂ apart: a patch of the upper half (about 20 of the 441
+    // vertices, so the list is kept and the patch's pairs looked up anew) brought down to
+    // 0.5 d̂ above the lower half, then pushed on by 0.6 d̂ (the step cap).
+    const physics::SelfContact patched(settings, model.get_discretization(), masses);
+    at = u;
+    // (Its first call takes the pairs alone, the second makes the list.)
+    for (const std::string call : {"first", "second"})
+      passed &= check_equal(pcout,
+                            "patch: " + call + " call 2.5 d̂ apart, energy",
+                            energy(patched),
+                            0.);
+    const auto in_patch = [](const Point<3> &X) {
+      return Point<3>(X[0], X[1], 0.).distance(Point<3>(0.5, 0.75, 0.)) < 0.12;
+    };
+    VectorType low, push;
+    model.initialize_owned(low);
+    model.initialize_owned(push);
+    fold(
+      model, [&](const Point<3> &X) { return (in_patch(X) ? 0.5 : 2.5) * d_hat; }, low);
+    for (const auto &element : model.get_discretization().elements())
+      for (unsigned int v = 0; v < 3; ++v)
+        if (element.reference[v][1] > 0.5 + 1e-9 && in_patch(element.reference[v]) &&
+            model.owned_dofs().is_element(element.dofs[3 * v + 2]))
+          push[element.dofs[3 * v + 2]] = -0.6 * d_hat;
+    push.compress(VectorOperation::insert);
+    at = low;
+    const double fresh =
+      energy(physics::SelfContact(settings, model.get_discretization(), masses));
+    passed &= check_above(pcout, "patch 0.5 d̂ above: energy, J", fresh, 0.);
+    passed &= check_near(pcout,
+                         "patch 0.5 d̂ above: energy of the kept term / a new one's",
+                         energy(patched) / fresh,
+                         1.,
+                         1e-14);
+    VectorType direction;
+    model.initialize_ghosted(direction);
+    direction = push;
+    const double kept_cap =
+      Utilities::MPI::min(patched.step_cap(at, direction), MPI_COMM_WORLD);
+    const double fresh_cap = Utilities::MPI::min(
+      physics::SelfContact(settings, model.get_discretization(), masses)
+        .step_cap(at, direction),
+      MPI_COMM_WORLD);
+    passed &= check_below(pcout, "patch pushed on by 0.6 d̂: step cap", fresh_cap, 0.999);
+    passed &= check_near(pcout,
+                         "patch pushed on: the kept term's step cap / a new one's",
+                         kept_cap / fresh_cap,
+                         1.,
+                         1e-14);
     return passed;
   }
 

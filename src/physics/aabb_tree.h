@@ -164,6 +164,13 @@ namespace clothsim::physics
       return order.size();
     }
 
+    // The i-th stored box (as given, or at the last refit).
+    const Box &
+    box(const unsigned int i) const
+    {
+      return boxes[i];
+    }
+
   private:
     struct Node
     {

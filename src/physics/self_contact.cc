@@ -75,169 +75,6 @@ namespace clothsim::physics
   }
 
 
-  bool
-  SelfContact::boxes_apart(const PairKind kind, const PairPoints &x, const double gap)
-  {
-    // The boxes of the two primitives (the point and the triangle, or the two edges).
-    const unsigned int first = kind == PairKind::point_triangle ? 1 : 2;
-    double             sum   = 0.;
-    for (unsigned int d = 0; d < 3; ++d)
-      {
-        double lower_a = x[0][d], upper_a = x[0][d];
-        for (unsigned int i = 1; i < first; ++i)
-          {
-            lower_a = std::min(lower_a, x[i][d]);
-            upper_a = std::max(upper_a, x[i][d]);
-          }
-        double lower_b = x[first][d], upper_b = x[first][d];
-        for (unsigned int i = first + 1; i < 4; ++i)
-          {
-            lower_b = std::min(lower_b, x[i][d]);
-            upper_b = std::max(upper_b, x[i][d]);
-          }
-        const double apart = std::max({lower_b - upper_a, lower_a - upper_b, 0.});
-        sum += apart * apart;
-      }
-    return sum >= gap * gap;
-  }
-
-
-  PairPoints
-  SelfContact::pair_points(const Pair &pair, const double *u_local) const
-  {
-    PairPoints x;
-    for (unsigned int i = 0; i < 4; ++i)
-      x[i] = cloth.position(pair.index[i], u_local);
-    return x;
-  }
-
-
-  void
-  SelfContact::for_each_pair(const double                            *u_local,
-                             const double                            *step_local,
-                             const double                            &margin,
-                             const std::function<void(const Pair &)> &visit) const
-  {
-    const double a_per_d = settings.barrier_acceleration / settings.thickness;
-    // The box around vertices at u (and u + step), grown by `grow`.
-    std::vector<Point<3>> corners;
-    const auto            box_of = [&](const auto &primitive, const double grow) {
-      corners.clear();
-      for (const unsigned int p : primitive)
-        {
-          const Point<3> x = cloth.position(p, u_local);
-          corners.push_back(x);
-          if (step_local != nullptr)
-            corners.push_back(x + cloth.part(p, step_local));
-        }
-      return Box::around(corners, grow);
-    };
-    const auto mass = [&](const unsigned int p) { return cloth.vertices[p].mass; };
-
-    // The hierarchies are built once per step (update_couplings) and refitted here.
-    const auto fit = [this](AabbTree &tree, const std::vector<Box> &boxes) {
-      if (rebuild_trees || tree.size() != boxes.size())
-        tree = AabbTree(boxes);
-      else
-        tree.refit(boxes);
-    };
-    boxes.clear();
-    for (const auto &triangle : cloth.triangles)
-      boxes.push_back(box_of(triangle, 0.));
-    fit(triangle_tree, boxes);
-    boxes.clear();
-    for (const auto &edge : cloth.edges)
-      boxes.push_back(box_of(edge, 0.));
-    fit(edge_tree, boxes);
-    boxes.clear();
-    for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
-      boxes.push_back(box_of(std::array<unsigned int, 1>{{p}}, 0.));
-    fit(vertex_tree, boxes);
-    rebuild_trees = false;
-    Pair pair;
-
-    // Vertices against triangles, both hierarchies descended at once.
-    pair.kind      = PairKind::point_triangle;
-    pair.threshold = 0.;
-    vertex_tree.for_each_overlap(
-      triangle_tree, margin, [&](const unsigned int p, const unsigned int t) {
-        const auto &triangle = cloth.triangles[t];
-        if (triangle[0] == p || triangle[1] == p || triangle[2] == p)
-          return;
-        pair.index = {{p, triangle[0], triangle[1], triangle[2]}};
-        pair.kappa =
-          0.25 * (mass(p) + mass(triangle[0]) + mass(triangle[1]) + mass(triangle[2])) *
-          a_per_d;
-        if (touches_owned(pair))
-          visit(pair);
-      });
-
-    // Edges against edges, each pair once (e < k).
-    pair.kind = PairKind::edge_edge;
-    edge_tree.for_each_overlap(margin, [&](const unsigned int e, const unsigned int k) {
-      const auto [a, b] = cloth.edges[e];
-      const auto [c, d] = cloth.edges[k];
-      if (c == a || c == b || d == a || d == b)
-        return;
-      pair.index     = {{a, b, c, d}};
-      pair.kappa     = 0.25 * (mass(a) + mass(b) + mass(c) + mass(d)) * a_per_d;
-      pair.threshold = mollifier_threshold(cloth.edge_length[e], cloth.edge_length[k]);
-      if (touches_owned(pair))
-        visit(pair);
-    });
-  }
-
-
-  bool
-  SelfContact::for_each_near_pair(const double                            *u_local,
-                                  const double                             reach,
-                                  const std::function<void(const Pair &)> &visit) const
-  {
-    // The pairs closer than the margin m at the cached state hold every pair closer
-    // than `reach` at any state whose vertices have moved by at most (m - reach)/2 from
-    // it, less a common translation (a falling sheet keeps its list). Where consecutive
-    // states are farther apart than that (cloth wrapping an obstacle moves by more in
-    // every Newton iteration), a list would be made at every call: the pairs whose boxes
-    // come within `reach` are then taken directly, and a list is made again once a call
-    // finds the state close to the one before.
-    const double margin = 2. * settings.thickness;
-    if (reach > margin)
-      return false;
-    const Clock::time_point start = Clock::now();
-    const double            moved =
-      near_from.empty()
-                   ? std::numeric_limits<double>::infinity()
-                   : largest_relative_motion(near_from.size(), [&](const unsigned int p) {
-            return cloth.position(p, u_local) - near_from[p];
-          });
-    const bool close = 2. * moved <= margin - reach;
-    if (!close || !near_listed)
-      {
-        near_pairs.clear();
-        near_listed      = close;
-        const double gap = close ? margin : reach;
-        for_each_pair(u_local, nullptr, gap, [&](const Pair &pair) {
-          const PairPoints x = pair_points(pair, u_local);
-          if (close ? pair_squared_distance(pair.kind, x) < gap * gap
-                    : !boxes_apart(pair.kind, x, gap))
-            {
-              near_pairs.push_back(pair);
-              // Looked up once for a list that evaluations reuse; else where needed.
-              if (close)
-                near_pairs.back().coupled = pair_coupled(pair);
-            }
-        });
-        near_from.resize(cloth.vertices.size());
-        for (unsigned int p = 0; p < near_from.size(); ++p)
-          near_from[p] = cloth.position(p, u_local);
-      }
-    phases.broad += seconds_since(start);
-    for (const Pair &pair : near_pairs)
-      visit(pair);
-    return true;
-  }
-
-
   void
   SelfContact::add_couplings(TrilinosWrappers::SparsityPattern &sparsity,
                              const AffineConstraints<double> & /*constraints*/) const
@@ -284,7 +121,7 @@ namespace clothsim::physics
     off_diagonal.clear();
     std::vector<unsigned int> touched;
     double                    value = 0.;
-    for_each_near_pair(u_local, d_hat, [&](const Pair &pair) {
+    for_each_near_pair(u_local, nullptr, d_hat, [&](const Pair &pair) {
       const PairPoints x = pair_points(pair, u_local);
       if (boxes_apart(pair.kind, x, d_hat))
         return;
@@ -322,7 +159,7 @@ namespace clothsim::physics
         return;
       // Off the diagonal only where the sparsity has the coupling (else the block
       // diagonal alone: that of a positive semi-definite matrix is one too).
-      if (!(near_listed ? pair.coupled : pair_coupled(pair)))
+      if (!(pair.listed ? pair.coupled : pair_coupled(pair)))
         {
           dropped += couple_pairs ? 1 : 0;
           return;
@@ -391,7 +228,7 @@ namespace clothsim::physics
     const double             *u_local = gathered(u, positions);
     double                    value   = 0.;
     const std::array<bool, 4> moving  = {{true, true, true, true}};
-    for_each_near_pair(u_local, settings.thickness, [&](const Pair &pair) {
+    for_each_near_pair(u_local, nullptr, settings.thickness, [&](const Pair &pair) {
       const PairPoints x = pair_points(pair, u_local);
       if (!counted(pair) || boxes_apart(pair.kind, x, settings.thickness))
         return;
@@ -428,16 +265,15 @@ namespace clothsim::physics
     };
     // A pair's distance D changes by at most 2 s on the path (s: the largest motion of
     // a vertex less the motions' common part), so it cannot come below a tenth of D if
-    // 0.9 D > 2 s: only the pairs closer than 2 s / 0.9 need the test, the near pairs if
-    // they cover that. Else the pairs whose swept boxes meet (those apart cannot meet on
-    // the path).
+    // 0.9 D > 2 s: only the pairs closer than 2 s / 0.9 need the test. They are among
+    // the near pairs (for_each_near_pair) or those whose swept boxes meet (pairs apart
+    // cannot meet on the path).
     const double largest =
       largest_relative_motion(cloth.vertices.size(), [&](const unsigned int p) {
         return Tensor<1, 3>(cloth.part(p, step_local));
       });
     reach = 2. * largest / (1. - settings.ccd_fraction);
-    if (!for_each_near_pair(u_local, reach, cap))
-      for_each_pair(u_local, step_local, 0., cap);
+    for_each_near_pair(u_local, step_local, reach, cap);
     return alpha;
   }
 

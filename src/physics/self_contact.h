@@ -6,8 +6,10 @@
 // moving) while closer than the contact thickness d̂, with κ = m̄ a_b / d̂ and m̄ the mean
 // lumped mass of the pair's four vertices. Candidates come from bounding-volume
 // hierarchies of the cloth's vertices, triangles and edges (physics/aabb_tree.h),
-// refitted at every evaluation to the positions it is given and descended two at once
-// (vertices against triangles, edges against edges). Newton's line search is capped by
+// refitted to the positions an evaluation is given and descended two at once (vertices
+// against triangles, edges against edges), through a list of the pairs near an earlier
+// state: only the pairs of vertices that have moved far from it are looked up again
+// (physics/self_contact_pairs.cc). Newton's line search is capped by
 // continuous collision detection of every pair whose swept boxes meet
 // (pair_step_bound): no iterate passes through the cloth.
 //
@@ -168,16 +170,29 @@ namespace clothsim::physics
       std::array<unsigned int, 4> index; // into cloth.vertices, in PairPoints order
       double                      kappa;
       double                      threshold; // the mollifier's (edge-edge), else 0
-      bool coupled = true; // all its vertices coupled in the sparsity (listed pairs only)
+      bool   listed   = false; // from the near-pair list (then `coupled` is known)
+      bool   coupled  = true;  // all its vertices coupled in the sparsity
+      double distance = 0.;    // listed: at the state the list was made at (m)
     };
 
     PairPoints
     pair_points(const Pair &pair, const double *u_local) const;
+    // The pair of vertex p and triangle t, and of edges e and k (e < k: the order in
+    // which pairs are visited), with their κ and mollifier threshold.
+    Pair
+    point_triangle_pair(const unsigned int p, const unsigned int t) const;
+    Pair
+    edge_edge_pair(const unsigned int e, const unsigned int k) const;
 
     // Whether the boxes around the pair's two primitives are `gap` or more apart (then
     // so are the primitives: a cheap test before the distance's).
     static bool
     boxes_apart(const PairKind kind, const PairPoints &x, const double gap);
+
+    // The hierarchies refitted to the primitives' boxes around their positions at u,
+    // and at u + step if `step_local` is non-null (built again at a step's start).
+    void
+    fit_trees(const double *u_local, const double *step_local) const;
 
     // Calls `visit` for every pair whose primitives' boxes (around their positions at
     // u, and at u + step if `step_local` is non-null) come within `margin`. `margin` is
@@ -188,13 +203,28 @@ namespace clothsim::physics
                   const double                            &margin,
                   const std::function<void(const Pair &)> &visit) const;
 
-    // Calls `visit` for every pair that may be closer than `reach` at u: from a list of
-    // the pairs closer than 2 d̂ at an earlier state, kept while no vertex has moved by
-    // more than (2 d̂ - reach)/2 from it, less the motions' common part (else made again
-    // here, or, where the last call's state was that far too, the pairs whose boxes are
-    // within `reach` taken alone). Returns false (visiting none) if `reach` exceeds 2 d̂.
+    // The same for the pairs with a vertex marked in `moved` only.
+    void
+    for_each_pair_of_moved(const double                            *u_local,
+                           const double                            *step_local,
+                           const double                             margin,
+                           const std::function<void(const Pair &)> &visit) const;
+
+    // Marks in `moved` the vertices whose motion from near_from (and, with a step,
+    // along it) may bring a pair off the list into play (see the definition); returns
+    // how many.
+    unsigned int
+    mark_moved(const double *u_local, const double *step_local, const double reach) const;
+
+    // Without a step: calls `visit` for every pair that may be closer than `reach` at u
+    // (and returns false, visiting none, if `reach` exceeds 2 d̂). With a step: for every
+    // pair that the step cap must test (its swept boxes may meet, or its distance fall
+    // below the CCD fraction of itself on the path). From a list of the pairs closer
+    // than 2 d̂ at an earlier state where few vertices have moved far from it, the
+    // pairs of those that have looked up anew; else from the hierarchies.
     bool
     for_each_near_pair(const double                            *u_local,
+                       const double                            *step_local,
                        const double                             reach,
                        const std::function<void(const Pair &)> &visit) const;
 
@@ -259,12 +289,19 @@ namespace clothsim::physics
     mutable AabbTree         triangle_tree, edge_tree, vertex_tree;
     mutable std::vector<Box> boxes;
     mutable bool             rebuild_trees = true;
-    // for_each_near_pair's list and the positions it was made at.
-    // (`near_listed`: a list for any reach up to 2 d̂; else the pairs within the last
-    // call's reach only.)
-    mutable std::vector<Pair>     near_pairs;
-    mutable std::vector<Point<3>> near_from;
-    mutable bool                  near_listed = false;
+    // for_each_near_pair's list, the positions it was made at and whether it is made;
+    // the vertices that have moved far from them (mark_moved), per vertex and listed,
+    // and every vertex's motion since (m);
+    // the pairs of those vertices for one call, and a buffer for the hierarchies'
+    // queries.
+    mutable std::vector<Pair>         near_pairs;
+    mutable std::vector<Point<3>>     near_from;
+    mutable bool                      near_listed = false;
+    mutable std::vector<char>         moved;
+    mutable std::vector<unsigned int> moved_vertices;
+    mutable std::vector<double>       motion_since; // per vertex, less the common part
+    mutable std::vector<Pair>         near_visits;
+    mutable std::vector<unsigned int> found_buffer;
     // add_to_step's sums per vertex and per coupled pair of vertices (key(a, b), a < b:
     // the block of a's rows and b's columns).
     mutable std::vector<Tensor<1, 3>>                       vertex_gradient;
