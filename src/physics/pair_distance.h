@@ -150,13 +150,11 @@ namespace clothsim::physics
   }
 
 
-  // The largest |m(p) - c| over points p < n, c the centre of the box around all their
-  // motions m(p). Distances do not change when every point moves by the same c, so this
-  // bounds how far the motions can change the distance of any pair (by at most twice
-  // it): a falling sheet's translation moves none.
+  // The centre of the box around the motions m(p) of the points p < n: their common
+  // part (distances do not change when every point moves by the same vector).
   template <typename Motion>
-  double
-  largest_relative_motion(const unsigned int n, const Motion &motion)
+  Tensor<1, 3>
+  common_motion(const unsigned int n, const Motion &motion)
   {
     Tensor<1, 3> low, high;
     for (unsigned int d = 0; d < 3; ++d)
@@ -173,7 +171,18 @@ namespace clothsim::physics
             high[d] = std::max(high[d], m[d]);
           }
       }
-    const Tensor<1, 3> centre  = (low + high) / 2.;
+    return (low + high) / 2.;
+  }
+
+
+  // The largest |m(p) - c| over points p < n, c their common motion (above). It bounds
+  // how far the motions can change the distance of any pair (by at most twice it): a
+  // falling sheet's translation moves none.
+  template <typename Motion>
+  double
+  largest_relative_motion(const unsigned int n, const Motion &motion)
+  {
+    const Tensor<1, 3> centre  = common_motion(n, motion);
     double             largest = 0.;
     for (unsigned int p = 0; p < n; ++p)
       largest = std::max(largest, (motion(p) - centre).norm_square());

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace clothsim::physics
 {
@@ -251,24 +250,6 @@ namespace clothsim::physics
     const auto along = [&](const unsigned int p) {
       return Tensor<1, 3>(cloth.part(p, step_local));
     };
-    const auto common = [n](const auto &motion) {
-      Tensor<1, 3> low, high;
-      for (unsigned int d = 0; d < 3; ++d)
-        {
-          low[d]  = std::numeric_limits<double>::infinity();
-          high[d] = -std::numeric_limits<double>::infinity();
-        }
-      for (unsigned int p = 0; p < n; ++p)
-        {
-          const Tensor<1, 3> m = motion(p);
-          for (unsigned int d = 0; d < 3; ++d)
-            {
-              low[d]  = std::min(low[d], m[d]);
-              high[d] = std::max(high[d], m[d]);
-            }
-        }
-      return Tensor<1, 3>((low + high) / 2.);
-    };
     const auto far =
       [&](const unsigned int p, const Tensor<1, 3> &c, const Tensor<1, 3> &s) {
         return (since(p) - c).norm_square() >= slack * slack ||
@@ -278,9 +259,9 @@ namespace clothsim::physics
     // Taken out either the motions' common part (the centre of their box: a sheet
     // moving as a whole) or nothing (a part of it moving alone), whichever marks fewer.
     Tensor<1, 3>       c, s;
-    const Tensor<1, 3> centre = common(since);
+    const Tensor<1, 3> centre = common_motion(n, since);
     const Tensor<1, 3> step_centre =
-      step_local != nullptr ? common(along) : Tensor<1, 3>();
+      step_local != nullptr ? common_motion(n, along) : Tensor<1, 3>();
     unsigned int without = 0, with = 0;
     for (unsigned int p = 0; p < n; ++p)
       {
