@@ -287,7 +287,7 @@ namespace clothsim::physics
     // Bounding-volume hierarchies of the triangles, the edges and the vertices, and
     // their boxes.
     mutable AabbTree         triangle_tree, edge_tree, vertex_tree;
-    mutable std::vector<Box> boxes;
+    mutable std::vector<Box> boxes, vertex_boxes;
     mutable bool             rebuild_trees = true;
     // for_each_near_pair's list, the positions it was made at and whether it is made;
     // the vertices that have moved far from them (mark_moved), per vertex and listed,

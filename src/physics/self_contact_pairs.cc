@@ -52,18 +52,22 @@ namespace clothsim::physics
   void
   SelfContact::fit_trees(const double *u_local, const double *step_local) const
   {
-    // The box around the primitive's vertices at u (and u + step).
-    std::vector<Point<3>> corners;
-    const auto            box_of = [&](const auto &primitive) {
-      corners.clear();
+    // Each vertex's box (around it at u, and u + step); a primitive's joins its
+    // vertices'.
+    vertex_boxes.resize(cloth.vertices.size());
+    for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
+      {
+        const Point<3> x = cloth.position(p, u_local);
+        vertex_boxes[p] =
+          step_local == nullptr
+            ? Box{x, x}
+            : Box::around(std::array<Point<3>, 2>{{x, x + cloth.part(p, step_local)}});
+      }
+    const auto box_of = [this](const auto &primitive) {
+      Box box = vertex_boxes[primitive[0]];
       for (const unsigned int p : primitive)
-        {
-          const Point<3> x = cloth.position(p, u_local);
-          corners.push_back(x);
-          if (step_local != nullptr)
-            corners.push_back(x + cloth.part(p, step_local));
-        }
-      return Box::around(corners);
+        box = box.merged(vertex_boxes[p]);
+      return box;
     };
     // The hierarchies are built once per step (update_couplings) and refitted here.
     const auto fit = [this](AabbTree &tree, const std::vector<Box> &boxes) {
@@ -80,10 +84,7 @@ namespace clothsim::physics
     for (const auto &edge : cloth.edges)
       boxes.push_back(box_of(edge));
     fit(edge_tree, boxes);
-    boxes.clear();
-    for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
-      boxes.push_back(box_of(std::array<unsigned int, 1>{{p}}));
-    fit(vertex_tree, boxes);
+    fit(vertex_tree, vertex_boxes);
     rebuild_trees = false;
   }
 
