@@ -341,6 +341,7 @@ namespace clothsim
     std::string  edge_contact_tangent;    // automatic | gauss-newton | projected exact
     unsigned int friction_updates;        // solves per step
     bool         self_contact;            // the cloth with itself
+    bool         self_contact_creases;    // only the pairs at each interior edge
     bool         self_contact_full_pairs; // whole pair Hessians in the tangent
     double       self_friction;           // μ between layers of the cloth
     std::vector<ObstacleParameters> obstacles; // the sections in use

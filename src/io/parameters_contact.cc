@@ -87,12 +87,16 @@ namespace clothsim
     prm.declare_entry(
       "Self contact",
       "false",
-      Patterns::Bool(),
-      "The cloth against itself: every vertex-triangle and edge-edge pair that "
-      "shares no vertex pays the same barrier within 'Thickness', and the line "
-      "search never lets the cloth pass through itself. 'Thickness' must be below "
-      "the smallest such distance at rest (checked). Works under MPI (every rank holds "
-      "the whole surface).");
+      Patterns::Selection("false|true|creases"),
+      "The cloth against itself. 'true': every vertex-triangle and edge-edge pair "
+      "that shares no vertex pays the same barrier within 'Thickness', and the line "
+      "search never lets the cloth pass through itself. 'creases': only the pairs of "
+      "the two triangles at each interior edge (each one's opposite vertex against "
+      "the other, each one's other edges against the other's): a crease cannot close "
+      "through itself (where 'Material/Director function = angle' jumps), at a "
+      "fraction of the cost, but other parts of the cloth may still pass through "
+      "each other. 'Thickness' must be below the smallest such distance at rest "
+      "(checked). Works under MPI (every rank holds the whole surface).");
     prm.declare_entry(
       "Self friction",
       "0",
@@ -198,7 +202,8 @@ namespace clothsim
     friction_updates        = prm.get_integer("Friction updates");
     edge_contact            = prm.get_bool("Edge contact");
     edge_contact_tangent    = prm.get("Edge contact tangent");
-    self_contact            = prm.get_bool("Self contact");
+    self_contact            = prm.get("Self contact") != "false";
+    self_contact_creases    = prm.get("Self contact") == "creases";
     self_contact_full_pairs = prm.get("Self contact tangent") == "full pairs";
     self_friction           = prm.get_double("Self friction");
     prm.leave_subsection();

@@ -240,4 +240,34 @@ namespace clothsim::physics
   }
 
 
+  double
+  hinge_distance_bound(const Point<3> &a,
+                       const Point<3> &b,
+                       const Point<3> &p,
+                       const Point<3> &q)
+  {
+    // In the edge's frame: s along it from a (length L), r_p and r_q the opposite
+    // vertices' offsets from its line (heights h_p, h_q). Open by 90 degrees or more
+    // (r_p · r_q <= 0), a point at (s, t) on one side and one at (s', t') on the other
+    // are at least √((s - s')² + t² + t'²) apart. So a vertex is at least its height
+    // from the other triangle, and an edge from a (toward p) from one from b (toward q)
+    // at least L / (1 + |s_p| / h_p + |s_q - L| / h_q): where both points are within τ
+    // of the line, they lie within τ |s_p| / h_p of a and τ |s_q - L| / h_q of b.
+    // With E = b - a, P = p - a, Q = q - a: L² r_p · r_q = (P · Q) L² - (P · E)(Q · E),
+    // L h_p = |P x E|, L s_p = P · E.
+    const Tensor<1, 3> E = b - a, P = p - a, Q = q - a;
+    const double       ee = E * E, pe = P * E, qe = Q * E;
+    if ((P * Q) * ee - pe * qe > 0.)
+      return 0.;
+    const double cross_p = cross_product_3d(P, E).norm(),
+                 cross_q = cross_product_3d(Q, E).norm();
+    if (cross_p == 0. || cross_q == 0.)
+      return 0.;
+    const double length = std::sqrt(ee);
+    return std::min(
+      {cross_p / length,
+       cross_q / length,
+       length / (1. + std::abs(pe) / cross_p + std::abs(qe - ee) / cross_q),
+       length / (1. + std::abs(qe) / cross_q + std::abs(pe - ee) / cross_p)});
+  }
 } // namespace clothsim::physics

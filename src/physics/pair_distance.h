@@ -212,4 +212,16 @@ namespace clothsim::physics
                   const PairPoints &dx,
                   const double      fraction,
                   const double      offset = 0.);
+
+  // A lower bound on the distance of every pair of the hinge of two triangles (a, b, p)
+  // and (a, b, q) (shared edge ab, opposite vertices p and q: each opposite vertex
+  // against the other triangle, and the edges pa, pb against bq, aq) at these
+  // positions, if it is open by 90 degrees or more; 0 where it is folded further. Then
+  // each point of one triangle is at least its distance from the edge's line away from
+  // the other's half-plane.
+  double
+  hinge_distance_bound(const Point<3> &a,
+                       const Point<3> &b,
+                       const Point<3> &p,
+                       const Point<3> &q);
 } // namespace clothsim::physics

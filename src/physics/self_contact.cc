@@ -48,11 +48,13 @@ namespace clothsim::physics
                            const mesh::Discretization &discretization,
                            const VectorType           &lumped_masses,
                            const bool                  couple_pairs,
-                           const double                friction)
+                           const double                friction,
+                           const bool                  creases_only)
     : GlobalTerm("self contact", TermKind::constraint)
     , settings(settings)
     , couple_pairs(couple_pairs)
     , friction(friction)
+    , creases_only(creases_only)
     , whole(discretization, lumped_masses)
     , cloth(whole.surface())
   {
@@ -72,6 +74,8 @@ namespace clothsim::physics
         piece[root(triangle[v])] = root(triangle[0]);
     for (unsigned int v = 0; v < piece.size(); ++v)
       piece[v] = root(v);
+    if (creases_only)
+      list_creases();
   }
 
 

@@ -13,6 +13,14 @@
 // continuous collision detection of every pair whose swept boxes meet
 // (pair_step_bound): no iterate passes through the cloth.
 //
+// With `creases_only` the pairs are those of the two triangles at each interior edge
+// only (a hinge: each one's opposite vertex against the other triangle, and each one's
+// two other edges against the other's), listed once from the mesh: a crease cannot
+// close through itself, where `Director function = angle` jumps (README, "Shell
+// bending"), and no hierarchy is needed. While a hinge is open by 90 degrees or more,
+// none of its pairs is closer than a bound from its two triangles' shape
+// (hinge_distance_bound), which decides which hinges an evaluation visits.
+//
 // A pair's Hessian couples vertices that share no triangle. By default only its
 // vertices' 3 x 3 diagonal blocks enter the tangent (the block diagonal of a positive
 // semi-definite matrix is one too), and the tangent's sparsity stays the mesh's. With
@@ -56,7 +64,8 @@ namespace clothsim::physics
                 const mesh::Discretization &discretization,
                 const VectorType           &lumped_masses,
                 const bool                  couple_pairs = false,
-                const double                friction     = 0.);
+                const double                friction     = 0.,
+                const bool                  creases_only = false);
 
     std::string
     report_column() const override
@@ -184,6 +193,20 @@ namespace clothsim::physics
     Pair
     edge_edge_pair(const unsigned int e, const unsigned int k) const;
 
+    // Fills `hinges` and `crease_pairs` from the mesh (each interior edge of two
+    // triangles).
+    void
+    list_creases();
+
+    // for_each_pair with `creases_only`: the hinges' pairs, each hinge visited if its
+    // bound is below `margin` (with a step: below margin + 2 M / (1 - CCD fraction),
+    // M the largest motion of its vertices along the step less their mean motion).
+    void
+    for_each_crease_pair(const double                            *u_local,
+                         const double                            *step_local,
+                         const double                            &margin,
+                         const std::function<void(const Pair &)> &visit) const;
+
     // Whether the boxes around the pair's two primitives are `gap` or more apart (then
     // so are the primitives: a cheap test before the distance's).
     static bool
@@ -267,13 +290,19 @@ namespace clothsim::physics
              extra_couplings.count(key(a, b)) > 0;
     }
 
-    const ContactSettings      settings;
-    const bool                 couple_pairs;
-    const double               friction; // μ between layers
-    std::vector<LaggedContact> lagged;
-    double                     last_dt = 0.;
-    WholeSurface               whole;
-    const ClothSurface        &cloth; // whole.surface()
+    const ContactSettings settings;
+    const bool            couple_pairs;
+    const double          friction; // μ between layers
+    const bool            creases_only;
+    // With `creases_only`: per hinge its vertices (a, b, p, q: the shared edge, then the
+    // opposite vertices) and its four pairs (crease_pairs[4 h] to [4 h + 3]).
+    std::vector<std::array<unsigned int, 4>> hinges;
+    std::vector<Pair>                        crease_pairs;
+    mutable std::vector<Point<3>>            crease_positions; // of an evaluation
+    std::vector<LaggedContact>               lagged;
+    double                                   last_dt = 0.;
+    WholeSurface                             whole;
+    const ClothSurface                      &cloth; // whole.surface()
     // The gathered displacements (3 per vertex) of an evaluation's vectors.
     mutable std::vector<double> positions, motions, friction_positions;
     mutable Phases              phases;

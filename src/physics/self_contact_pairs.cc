@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace clothsim::physics
 {
@@ -128,6 +129,8 @@ namespace clothsim::physics
                              const double                            &margin,
                              const std::function<void(const Pair &)> &visit) const
   {
+    if (creases_only)
+      return for_each_crease_pair(u_local, step_local, margin, visit);
     fit_trees(u_local, step_local);
     // Vertices against triangles, both hierarchies descended at once.
     vertex_tree.for_each_overlap(
@@ -305,6 +308,14 @@ namespace clothsim::physics
     // and u becomes near_from: a list is made at the next call if few vertices have
     // moved far from there (a cloth wrapping an obstacle, or turning, moves far in every
     // Newton iteration, and a list made at each call would not be reused).
+    if (creases_only)
+      {
+        for_each_crease_pair(u_local,
+                             step_local,
+                             step_local != nullptr ? 0. : reach,
+                             visit);
+        return true;
+      }
     const double margin = 2. * settings.thickness;
     if (step_local == nullptr && reach > margin)
       return false;
@@ -384,5 +395,74 @@ namespace clothsim::physics
     for (const Pair &pair : near_visits)
       visit(pair);
     return true;
+  }
+
+  void
+  SelfContact::list_creases()
+  {
+    std::unordered_map<std::uint64_t, unsigned int> edge_of;
+    for (unsigned int e = 0; e < cloth.edges.size(); ++e)
+      edge_of[key(cloth.edges[e][0], cloth.edges[e][1])] = e;
+    // Per edge, the triangles on it and their vertices opposite it.
+    std::unordered_map<std::uint64_t, std::vector<std::array<unsigned int, 2>>> sides;
+    for (unsigned int t = 0; t < cloth.triangles.size(); ++t)
+      for (unsigned int v = 0; v < 3; ++v)
+        sides[key(cloth.triangles[t][v], cloth.triangles[t][(v + 1) % 3])].push_back(
+          {{t, cloth.triangles[t][(v + 2) % 3]}});
+    const auto edge_pair = [&](const unsigned int a,
+                               const unsigned int b,
+                               const unsigned int c,
+                               const unsigned int d) {
+      const unsigned int e = edge_of.at(key(a, b)), k = edge_of.at(key(c, d));
+      return edge_edge_pair(std::min(e, k), std::max(e, k));
+    };
+    for (const auto &[edge, on] : sides)
+      {
+        if (on.size() != 2)
+          continue; // a free edge (or a non-manifold one: left to full self-contact)
+        const unsigned int a = edge >> 32, b = edge & 0xffffffffu;
+        const unsigned int p = on[0][1], q = on[1][1];
+        hinges.push_back({{a, b, p, q}});
+        crease_pairs.push_back(point_triangle_pair(p, on[1][0]));
+        crease_pairs.push_back(point_triangle_pair(q, on[0][0]));
+        crease_pairs.push_back(edge_pair(p, a, b, q));
+        crease_pairs.push_back(edge_pair(p, b, a, q));
+      }
+  }
+
+
+  void
+  SelfContact::for_each_crease_pair(const double                            *u_local,
+                                    const double                            *step_local,
+                                    const double                            &margin,
+                                    const std::function<void(const Pair &)> &visit) const
+  {
+    std::vector<Point<3>> &x = crease_positions;
+    x.resize(cloth.vertices.size());
+    for (unsigned int p = 0; p < x.size(); ++p)
+      x[p] = cloth.position(p, u_local);
+    for (unsigned int h = 0; h < hinges.size(); ++h)
+      {
+        const std::array<unsigned int, 4> &v     = hinges[h];
+        double                             reach = margin;
+        if (step_local != nullptr)
+          {
+            // A pair's distance changes by at most twice its points' largest motion
+            // less any common one (here their mean) on the path.
+            std::array<Tensor<1, 3>, 4> dx;
+            Tensor<1, 3>                mean;
+            for (unsigned int i = 0; i < 4; ++i)
+              mean += (dx[i] = cloth.part(v[i], step_local)) / 4.;
+            double largest = 0.;
+            for (const Tensor<1, 3> &motion : dx)
+              largest = std::max(largest, (motion - mean).norm());
+            reach += 2. * largest / (1. - settings.ccd_fraction);
+          }
+        if (hinge_distance_bound(x[v[0]], x[v[1]], x[v[2]], x[v[3]]) >= reach)
+          continue;
+        for (unsigned int k = 4 * h; k < 4 * h + 4; ++k)
+          if (touches_owned(crease_pairs[k]))
+            visit(crease_pairs[k]);
+      }
   }
 } // namespace clothsim::physics

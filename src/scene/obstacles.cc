@@ -154,7 +154,8 @@ namespace clothsim
       discretization,
       masses,
       given.self_contact_full_pairs,
-      given.self_friction);
+      given.self_friction,
+      given.self_contact_creases);
     // The barrier must not act at rest, nor the cloth start through itself.
     VectorType rest;
     discretization.initialize_ghosted(rest);
