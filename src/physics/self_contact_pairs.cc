@@ -416,11 +416,11 @@ namespace clothsim::physics
       const unsigned int e = edge_of.at(key(a, b)), k = edge_of.at(key(c, d));
       return edge_edge_pair(std::min(e, k), std::max(e, k));
     };
-    for (const auto &[edge, on] : sides)
+    for (const auto &[a, b] : cloth.edges) // in the edges' order, the same on all ranks
       {
+        const auto &on = sides.at(key(a, b));
         if (on.size() != 2)
           continue; // a free edge (or a non-manifold one: left to full self-contact)
-        const unsigned int a = edge >> 32, b = edge & 0xffffffffu;
         const unsigned int p = on[0][1], q = on[1][1];
         hinges.push_back({{a, b, p, q}});
         crease_pairs.push_back(point_triangle_pair(p, on[1][0]));
