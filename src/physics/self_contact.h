@@ -207,6 +207,21 @@ namespace clothsim::physics
                          const double                            &margin,
                          const std::function<void(const Pair &)> &visit) const;
 
+    // Visits the pair of vertex p and triangle t unless t has p or no vertex of the
+    // pair is owned here.
+    void
+    visit_point_triangle(const unsigned int                       p,
+                         const unsigned int                       t,
+                         const std::function<void(const Pair &)> &visit) const
+    {
+      const auto &triangle = cloth.triangles[t];
+      if (triangle[0] == p || triangle[1] == p || triangle[2] == p)
+        return;
+      const Pair pair = point_triangle_pair(p, t);
+      if (touches_owned(pair))
+        visit(pair);
+    }
+
     // Whether the boxes around the pair's two primitives are `gap` or more apart (then
     // so are the primitives: a cheap test before the distance's).
     static bool

@@ -133,15 +133,11 @@ namespace clothsim::physics
       return for_each_crease_pair(u_local, step_local, margin, visit);
     fit_trees(u_local, step_local);
     // Vertices against triangles, both hierarchies descended at once.
-    vertex_tree.for_each_overlap(
-      triangle_tree, margin, [&](const unsigned int p, const unsigned int t) {
-        const auto &triangle = cloth.triangles[t];
-        if (triangle[0] == p || triangle[1] == p || triangle[2] == p)
-          return;
-        const Pair pair = point_triangle_pair(p, t);
-        if (touches_owned(pair))
-          visit(pair);
-      });
+    vertex_tree.for_each_overlap(triangle_tree,
+                                 margin,
+                                 [&](const unsigned int p, const unsigned int t) {
+                                   visit_point_triangle(p, t, visit);
+                                 });
     // Edges against edges, each pair once (e < k).
     edge_tree.for_each_overlap(margin, [&](const unsigned int e, const unsigned int k) {
       const auto [a, b] = cloth.edges[e];
@@ -185,14 +181,7 @@ namespace clothsim::physics
         found.clear();
         triangle_tree.find(grown(vertex_tree.box(p)), found);
         for (const unsigned int t : found)
-          {
-            const auto &triangle = cloth.triangles[t];
-            if (triangle[0] == p || triangle[1] == p || triangle[2] == p)
-              continue;
-            const Pair pair = point_triangle_pair(p, t);
-            if (touches_owned(pair))
-              visit(pair);
-          }
+          visit_point_triangle(p, t, visit);
       }
     for (unsigned int t = 0; t < cloth.triangles.size(); ++t)
       {
