@@ -127,6 +127,48 @@ namespace clothsim::test
                        0.05);
   }
 
+  // A sheet at rest on obstacle 1 ('ball') until it is removed within the step that
+  // starts at `start` (s; backward Euler, step dt): from then on it falls freely, its
+  // centre by g τ (τ + dt) / 2 after a time τ (backward Euler from rest under a constant
+  // g: u_n = g dt² n (n + 1) / 2), within 0.5 % of that (the creep of the resting
+  // sheet); and no row after `start` has a force or contact of the obstacle.
+  inline bool
+  check_free_fall(ConditionalOStream          &pcout,
+                  const std::string           &name,
+                  const std::filesystem::path &directory,
+                  const Tensor<1, 3>          &gravity,
+                  const double                 start,
+                  const double                 end,
+                  const double                 dt)
+  {
+    const double       tau      = end - start;
+    const Tensor<1, 3> expected = 0.5 * tau * (tau + dt) * gravity;
+    const Tensor<1, 3> fallen   = centre_at(directory, end) - centre_at(directory, start);
+    bool               passed   = check_below(pcout,
+                              name + ": |centre's fall - g τ (τ + dt) / 2| / its length",
+                              (fallen - expected).norm() / expected.norm(),
+                              5e-3);
+    const Csv          statistics = read_csv((directory / "statistics.csv").string());
+    double             largest    = 0.;
+    unsigned int       rows       = 0;
+    for (unsigned int r = 0; r < statistics.rows.size(); ++r)
+      if (statistics.number(r, "time") > start + 0.5 * dt)
+        {
+          ++rows;
+          largest = std::max({largest,
+                              std::abs(statistics.number(r, "ball_force_x")),
+                              std::abs(statistics.number(r, "ball_force_y")),
+                              std::abs(statistics.number(r, "ball_force_z")),
+                              statistics.number(r, "ball_contacts")});
+        }
+    passed &= check_above(pcout, name + ": rows after the removal", rows, 0.5);
+    passed &= check_at_most(pcout,
+                            name + ": largest force (N) or contacts after the removal",
+                            largest,
+                            0.);
+    return passed;
+  }
+
   // Every row of the run's statistics.csv has the cloth apart from every obstacle: its
   // vertices and contact pairs, and (`whole_surface`, with edge contact) every point of
   // its triangles.

@@ -41,6 +41,10 @@
 //    with edge contact it catches the sheet, whose centre hangs within 10 cm of it at
 //    0.6 s, and no point of a triangle ever reaches it; without, the sheet falls
 //    through it between its vertices (its centre 1.7 m down at 0.6 s).
+// 9. A support taken away: the sticking sheet of 1. (θ = 10°, μ = 0.3, backward Euler)
+//    with the plane removed at 0.31 s ('Obstacle 1/Removed at') as it drops 100 m within
+//    the step (a removed obstacle carries no vertex along, nor keeps its friction): from
+//    0.3 s the sheet falls freely (tests/contact_checks.h, check_free_fall).
 
 #include "contact_checks.h"
 
@@ -122,6 +126,28 @@ namespace
     passed &=
       check_below(pcout, "sticking: |u| of the centre after 0.6 s, m", creep, 1e-3 * 0.6);
     return passed;
+  }
+
+  bool
+  check_removed(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    const double theta = numbers::PI / 18., g = 9.81;
+    GuardedRun   result;
+    if (!run(pcout,
+             "removed",
+             join(incline(mesh, theta),
+                  {"Time/Integrator=backward euler",
+                   "Obstacle 1/Translation=0; 0; -100*(t>0.31)",
+                   "Obstacle 1/Removed at=0.31"}),
+             result))
+      return false;
+    return check_free_fall(pcout,
+                           "removed",
+                           root / "removed",
+                           Tensor<1, 3>({g * std::sin(theta), 0., -g * std::cos(theta)}),
+                           0.3,
+                           0.6,
+                           1. / 60.);
   }
 
   bool
@@ -335,5 +361,7 @@ main(int argc, char **argv)
   passed &= check_pins_into_plane(pcout, mesh);
   pcout << "8. a rod narrower than the triangles" << std::endl;
   passed &= check_rod(pcout, mesh);
+  pcout << "9. a support taken away" << std::endl;
+  passed &= check_removed(pcout, mesh);
   return finish(pcout, passed);
 }

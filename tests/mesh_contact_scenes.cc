@@ -33,6 +33,11 @@
 //    the disc, and the stiffer, heavier denim stands out further than cotton (DC above
 //    0.7 at 0.5 s, where the cotton preset gives 0.478; measured 0.777).
 
+// 8. A support taken away: the sheet at rest on the flat mesh of 2., tilted by 10° (μ =
+//    0.3 holds it; backward Euler), the mesh removed at 0.31 s as it drops 100 m within
+//    the step: the sheet falls freely from 0.3 s (tests/contact_checks.h,
+//    check_free_fall; a removed mesh carries no vertex along, nor keeps its friction).
+
 #include "contact_checks.h"
 #include "mesh/surface_mesh.h"
 
@@ -326,6 +331,33 @@ namespace
   }
 
   bool
+  check_removed(ConditionalOStream &pcout, const std::string &mesh)
+  {
+    const double theta = numbers::PI / 18., g = 9.81;
+    GuardedRun   result;
+    if (!run(pcout,
+             "removed",
+             "params/contact/sheet-on-sphere.prm",
+             join(on_mesh(mesh, write_flat_mesh(-0.004, 8)),
+                  {"Obstacle 1/Friction=0.3",
+                   "Loads/Gravity=" + number(g * std::sin(theta)) + ", 0, " +
+                     number(-g * std::cos(theta)),
+                   "Time/Integrator=backward euler",
+                   "Time/End time=0.6",
+                   "Obstacle 1/Translation=0; 0; -100*(t>0.31)",
+                   "Obstacle 1/Removed at=0.31"}),
+             result))
+      return false;
+    return check_free_fall(pcout,
+                           "removed",
+                           root / "removed",
+                           Tensor<1, 3>({g * std::sin(theta), 0., -g * std::cos(theta)}),
+                           0.3,
+                           0.6,
+                           1. / 60.);
+  }
+
+  bool
   check_sharp_obstacle(ConditionalOStream &pcout, const std::string &mesh)
   {
     GuardedRun result;
@@ -423,5 +455,7 @@ main(int argc, char **argv)
   passed &= check_lattice_drape(pcout);
   pcout << "7. the drape test in denim (Material/Preset = denim)" << std::endl;
   passed &= check_denim_drape(pcout);
+  pcout << "8. a support taken away" << std::endl;
+  passed &= check_removed(pcout, mesh);
   return finish(pcout, passed);
 }

@@ -328,6 +328,7 @@ namespace clothsim
     std::string  translation; // 'x; y; z' expressions of t, m
     Tensor<1, 3> rotation_axis;
     std::string  rotation_angle; // an expression of t, rad
+    double       removal_time;   // s; +inf: never removed
   };
 
   struct ContactParameters

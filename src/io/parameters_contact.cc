@@ -9,6 +9,10 @@
 #include "io/parameters_detail.h"
 #include <deal.II/base/parameter_handler.h>
 
+#include <cmath>
+#include <limits>
+#include <sstream>
+
 namespace clothsim
 {
   using detail::vector_entry;
@@ -19,6 +23,22 @@ namespace clothsim
     section(const unsigned int k)
     {
       return "Obstacle " + std::to_string(k + 1);
+    }
+
+    // 'never' (+inf) or a time >= 0 (s).
+    double
+    removal_time(const std::string &given, const std::string &where)
+    {
+      if (given == "never")
+        return std::numeric_limits<double>::infinity();
+      std::istringstream text(given);
+      double             time = 0.;
+      if (!(text >> time) || !(text >> std::ws).eof() || !(time >= 0.) ||
+          !std::isfinite(time))
+        throw InputError("",
+                         where + "/Removed at",
+                         "'" + given + "' is neither 'never' nor a time >= 0 in s");
+      return time;
     }
   } // namespace
 
@@ -187,6 +207,13 @@ namespace clothsim
                           Patterns::Anything(),
                           "rad, an expression of t (s), e.g. '2*t'; a constant turns a "
                           "box.");
+        prm.declare_entry("Removed at",
+                          "never",
+                          Patterns::Anything(),
+                          "s, or 'never': the obstacle leaves the scene at this time "
+                          "(a support taken away). The steps that end after it see no "
+                          "barrier, cap or friction of it, and it carries no cloth "
+                          "along as it goes.");
         prm.leave_subsection();
       }
   }
@@ -232,6 +259,7 @@ namespace clothsim
             obstacle.rotation_axis  = vector_entry(prm.get("Rotation axis"));
             obstacle.rotation_angle = prm.get("Rotation angle");
             const std::string where = section(k);
+            obstacle.removal_time   = removal_time(prm.get("Removed at"), where);
             if (obstacle.axis.norm() == 0.)
               throw InputError("", where + "/Axis", "must not be zero");
             if (obstacle.rotation_axis.norm() == 0.)

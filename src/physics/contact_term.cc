@@ -214,7 +214,8 @@ namespace clothsim::physics
                                                          settings.ccd_fraction);
             if (alpha < 1. && !constraints.is_constrained(vertex.dofs[0]))
               guess = carried + alpha * (guess - carried);
-            if (d_n < d_hat && obstacles[o].friction() > 0.)
+            // No friction from an obstacle that leaves within the step.
+            if (d_n < d_hat && obstacles[o].friction() > 0. && end[o].present)
               {
                 LaggedContact contact = vertex_contact(k, o, carried);
                 tangent_basis(obstacles[o].distance(end[o], carried, true).gradient,

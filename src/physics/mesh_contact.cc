@@ -89,7 +89,7 @@ namespace clothsim::physics
     std::vector<unsigned int> found;
     for (const unsigned int o : mesh_obstacles)
       {
-        if (only != numbers::invalid_unsigned_int && o != only)
+        if ((only != numbers::invalid_unsigned_int && o != only) || !poses[o].present)
           continue;
         const ObstacleSurface &surface = *obstacles[o].shape().surface;
         const RigidPose       &pose    = poses[o];
@@ -194,7 +194,8 @@ namespace clothsim::physics
     bool         same   = !near_from.empty() && near_poses.size() == poses.size();
     for (unsigned int o = 0; same && o < poses.size(); ++o)
       same = near_poses[o].rotation == poses[o].rotation &&
-             near_poses[o].translation == poses[o].translation;
+             near_poses[o].translation == poses[o].translation &&
+             near_poses[o].present == poses[o].present;
     double moved = 0.;
     for (unsigned int p = 0; same && p < near_from.size(); ++p)
       moved = std::max(moved, cloth.position(p, u_local).distance_square(near_from[p]));
@@ -373,7 +374,7 @@ namespace clothsim::physics
     // analytic obstacles' vertex distances are ObstacleContact's).
     for (const unsigned int o : mesh_obstacles)
       {
-        if (obstacles[o].shape().core != ObstacleCore::mesh)
+        if (obstacles[o].shape().core != ObstacleCore::mesh || !poses[o].present)
           continue;
         const ObstacleSurface &surface = *obstacles[o].shape().surface;
         for (unsigned int p = 0; p < cloth.vertices.size(); ++p)
@@ -426,6 +427,8 @@ namespace clothsim::physics
       {
         if (!found.empty())
           break;
+        if (!poses[o].present)
+          continue;
         const ObstacleSurface &surface = *obstacles[o].shape().surface;
         const auto            &v       = surface.vertices;
         const std::string      name    = "obstacle '" + obstacles[o].name() + "'";

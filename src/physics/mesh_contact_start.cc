@@ -36,8 +36,10 @@ namespace clothsim::physics
       {
         if (obstacles[o].shape().core != ObstacleCore::mesh)
           continue;
+        // An obstacle that has left carries nothing.
         const RigidPose &from = start_poses[o], &to = poses[o];
-        if (from.rotation == to.rotation && from.translation == to.translation)
+        if (!to.present ||
+            (from.rotation == to.rotation && from.translation == to.translation))
           continue;
         // The cloth carried along, then back to where it is: in the obstacle's frame
         // the straight path of the cloth left in place.

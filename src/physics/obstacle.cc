@@ -251,13 +251,15 @@ namespace clothsim::physics
                      const double                              friction,
                      std::function<Tensor<1, 3>(const double)> translation,
                      const Tensor<1, 3>                       &rotation_axis,
-                     std::function<double(const double)>       angle)
+                     std::function<double(const double)>       angle,
+                     const double                              removal_time)
     : obstacle_name(name)
     , body_shape(shape)
     , friction_coefficient(friction)
     , translation(std::move(translation))
     , rotation_axis(rotation_axis / rotation_axis.norm())
     , angle(std::move(angle))
+    , removal_time(removal_time)
   {}
 
 
@@ -279,6 +281,7 @@ namespace clothsim::physics
     // x = R (y - c) + c + T.
     const Tensor<1, 3> center = body_shape.center;
     pose.translation          = center + translation(t) - pose.rotation * center;
+    pose.present              = t <= removal_time;
     return pose;
   }
 
@@ -288,6 +291,8 @@ namespace clothsim::physics
                      const Point<3>  &x,
                      const bool       derivatives) const
   {
+    if (!pose.present)
+      return {std::numeric_limits<double>::infinity(), Tensor<1, 3>(), Tensor<2, 3>()};
     SignedDistance d = signed_distance(body_shape, pose.to_body(x), derivatives);
     if (derivatives)
       {
@@ -305,6 +310,8 @@ namespace clothsim::physics
                        const Tensor<1, 3> &dx,
                        const double        fraction) const
   {
+    if (!pose.present)
+      return 1.;
     const Point<3>     y     = pose.to_body(x);
     const Tensor<1, 3> dy    = transpose(pose.rotation) * dx;
     const double       d0    = signed_distance(body_shape, y, false).value;
@@ -340,6 +347,8 @@ namespace clothsim::physics
                               const std::array<Point<3>, 3> &x,
                               const double                   tolerance) const
   {
+    if (!pose.present)
+      return std::numeric_limits<double>::infinity();
     const Point<3>     y0 = pose.to_body(x[0]);
     const Tensor<1, 3> e1 = pose.to_body(x[1]) - y0, e2 = pose.to_body(x[2]) - y0;
     const auto         d = [&](const double a, const double b) {

@@ -24,6 +24,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -72,11 +73,13 @@ namespace clothsim::physics
   SignedDistance
   signed_distance(const ObstacleShape &shape, const Point<3> &y, const bool derivatives);
 
-  // x = rotation y + translation.
+  // x = rotation y + translation; `present` false once the obstacle has left the scene
+  // (Obstacle::pose): no distance, cap or pair then.
   struct RigidPose
   {
     Tensor<2, 3> rotation;
     Tensor<1, 3> translation;
+    bool         present = true;
 
     Point<3>
     to_world(const Point<3> &y) const
@@ -94,13 +97,15 @@ namespace clothsim::physics
   {
   public:
     // `translation(t)` (m) and `angle(t)` (rad, about `rotation_axis` through the
-    // shape's centre); friction: Coulomb's μ against the cloth.
+    // shape's centre); friction: Coulomb's μ against the cloth. The obstacle leaves the
+    // scene after `removal_time` (s): its pose at a later time is not present.
     Obstacle(const std::string                        &name,
              const ObstacleShape                      &shape,
              const double                              friction,
              std::function<Tensor<1, 3>(const double)> translation,
              const Tensor<1, 3>                       &rotation_axis,
-             std::function<double(const double)>       angle);
+             std::function<double(const double)>       angle,
+             const double removal_time = std::numeric_limits<double>::infinity());
 
     const std::string &
     name() const
@@ -121,13 +126,15 @@ namespace clothsim::physics
     RigidPose
     pose(const double t) const;
 
-    // d and its world-frame derivatives at the world point x, the obstacle at `pose`.
+    // d and its world-frame derivatives at the world point x, the obstacle at `pose`
+    // (+inf, derivatives zero, where the pose is not present).
     SignedDistance
     distance(const RigidPose &pose, const Point<3> &x, const bool derivatives) const;
 
     // The largest α in [0, 1] such that d(x + s dx) >= fraction d(x) for all s in
     // [0, α] (0 < fraction < 1, d(x) > 0): the line search's cap (continuous collision
-    // detection along a straight path, obstacle at `pose`). Conservative: d along the
+    // detection along a straight path, obstacle at `pose`; 1 where it is not present).
+    // Conservative: d along the
     // path is convex for every shape, so after its minimum on [0, 1] is located the first
     // crossing is bracketed and bisected, and the lower end of the bracket is returned.
     double
@@ -142,7 +149,7 @@ namespace clothsim::physics
     // signed distance of a convex set is convex, and so is its minimum over one
     // barycentric coordinate: nested golden-section searches. Exact for a sphere and a
     // capsule: the distance of the triangle from the core's point or segment, less the
-    // radius.
+    // radius. +inf where the pose is not present.
     double
     triangle_distance(const RigidPose               &pose,
                       const std::array<Point<3>, 3> &x,
@@ -155,5 +162,6 @@ namespace clothsim::physics
     std::function<Tensor<1, 3>(const double)> translation;
     const Tensor<1, 3>                        rotation_axis; // unit
     std::function<double(const double)>       angle;
+    const double                              removal_time;
   };
 } // namespace clothsim::physics

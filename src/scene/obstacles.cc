@@ -81,7 +81,8 @@ namespace clothsim
           [angle](const double t) {
             angle->set_time(t);
             return angle->value(Point<3>());
-          });
+          },
+          given.removal_time);
       }
     return obstacles;
   }
