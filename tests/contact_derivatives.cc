@@ -25,9 +25,11 @@
 //    than that less.
 // 6. How far a core moves in a step (scene/obstacles.h, largest_core_step, which picks
 //    edge contact's tangent): a translating sphere's centre by v dt, a turning box's
-//    corners by the chord 2 ρ sin(ω dt/2), to 1e-12. 'automatic' takes the projected
-//    exact tangent for the sphere moving by a quarter of its radius per 'Time step' only
-//    when adaptive steps may grow to 'Maximum time step' (4 times as long).
+//    corners by the chord 2 ρ sin(ω dt/2), to 1e-12, a sphere removed at 0.5 s
+//    ('Removed at') as it jumps 100 m by v dt (its motion up to then). 'automatic' takes
+//    the projected exact tangent for the sphere moving by a quarter of its radius per
+//    'Time step' only when adaptive steps may grow to 'Maximum time step' (4 times as
+//    long).
 
 #include "contact_checks.h"
 #include "physics/contact_potential.h"
@@ -459,6 +461,22 @@ namespace
                              largest_core_step(sphere, dt, 1.) / (0.1 * dt),
                              1.,
                              1e-12);
+    // The same sphere jumping 100 m as it is removed at 0.5 s: its steps up to then.
+    const Obstacle removed(
+      "removed sphere",
+      sphere.shape(),
+      0.,
+      [](const double t) {
+        return Tensor<1, 3>({0.1 * t, -0.2, 0.3 - 100. * (t > 0.5)});
+      },
+      Tensor<1, 3>({0., 1., 1.}) / std::sqrt(2.),
+      [](const double t) { return 0.7 + t; },
+      0.5);
+    passed &= check_near(pcout,
+                         "sphere removed as it jumps: largest core step / (0.1 m/s dt)",
+                         largest_core_step(removed, dt, 1.) / (0.1 * dt),
+                         1.,
+                         1e-12);
     passed &= check_near(pcout,
                          "turning box: largest core step / (2 ρ sin(ω dt / 2))",
                          largest_core_step(box, dt, 1.) /

@@ -107,6 +107,8 @@ namespace clothsim
       {
         const double             t     = k * time_step;
         const physics::RigidPose after = obstacle.pose(t + time_step);
+        if (!after.present) // removed: its later motion moves nothing
+          break;
         if (stride > 1.)
           before = obstacle.pose(t);
         for (const Point<3> &y : surface->vertices)

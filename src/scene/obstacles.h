@@ -21,7 +21,7 @@ namespace clothsim
 
   // The farthest any of an analytic obstacle's core features (its ObstacleShape::surface)
   // moves between its poses at consecutive times k dt, k = 0, 1, ..., up to `end_time`
-  // (m; sampled at most 100,000 times, evenly); 0 without features.
+  // or its removal (m; sampled at most 100,000 times, evenly); 0 without features.
   double
   largest_core_step(const physics::Obstacle &obstacle,
                     const double             time_step,
