@@ -39,6 +39,12 @@
 #                       (default "0.3 0.6 0.9 1.2"; "" skips that table); each at
 #                       least window + 3 steps before --end-time
 #   --window K          steps after each T (default 6: 0.1 s)
+#   --instructions      also count the instructions of each window (callgrind, valgrind
+#                       needed): both runs to T write a checkpoint, and each window is its
+#                       restart counted in TimeStepper::run() alone (start-up, mesh and
+#                       checkpoint reading excluded): a fourth table, free of the machine's
+#                       timing noise. Slow: callgrind runs about 50 times slower (N = 21:
+#                       seconds per window, N = 41: about a minute, N = 81: minutes)
 #   --set "S/N=V"       passed to every run (repeatable)
 #   --output DIR        where the runs write (DIR/<method>-N<N>-<sphere|none|from-T>/,
 #                       run.log);
@@ -63,6 +69,7 @@ window=6
 output=""
 keep=false
 reuse=false
+instructions=false
 overrides=()
 
 die() {
@@ -85,12 +92,16 @@ while [ $# -gt 0 ]; do
       shift 2
       ;;
     --keep) keep=true && shift ;;
+    --instructions) instructions=true && shift ;;
     --reuse) reuse=true && shift ;;
     -h | --help) sed -n '/^# Usage:/,/^# Example:/p' "$0" | sed 's/^# \{0,1\}//' && exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
 [ -x "$clothsim" ] || die "no executable '$clothsim' (build first, or set CLOTHSIM)"
+[ "$instructions" = false ] || [ -n "$from_times" ] || die "--instructions needs --from times"
+[ "$instructions" = false ] || command -v valgrind >/dev/null ||
+  die "--instructions needs valgrind (Debian package valgrind)"
 [[ "$window" =~ ^[1-9][0-9]*$ ]] || die "--window: a positive number of steps, not '$window'"
 # The scene's step (s), from its parameter file.
 dt=$(sed -n 's/^ *set Time step *= *\([0-9.e+-]*\).*/\1/p' \
@@ -272,6 +283,65 @@ if [ -n "$from_times" ]; then
     END { for (i = 1; i <= m; ++i) { split(order[i], q, SUBSEP); k = order[i]
             printf f, q[1], q[2], "all", n1[k], n2[k], r(n1[k], n2[k]), sprintf("%.3f", w1[k]),
               sprintf("%.3f", w2[k]), r(w1[k], w2[k]), h1[k], h2[k], "" } }'
+fi
+
+# The instructions of each window (the fourth table): the runs to T with a checkpoint at
+# T, with the sphere and with it removed after T, each restarted to T + window dt under
+# callgrind, which counts TimeStepper::run() only.
+if [ "$instructions" = true ]; then
+  count_rows=()
+  for method in $methods; do
+    for n in $sizes; do
+      for t in $from_times; do
+        removal=$(awk -v t="$t" -v d="$dt" 'BEGIN { printf "%.17g", t + d / 2 }')
+        finish=$(awk -v t="$t" -v d="$dt" -v w="$window" 'BEGIN { printf "%.17g", t + w * d }')
+        row="$method $n $t"
+        for obstacle in sphere none; do
+          directory="$output/$method-N$n-count-$obstacle-$t"
+          printf '%s, N = %s, instructions from t = %s s, %s ... ' "$method" "$n" "$t" "$obstacle" >&2
+          removed=()
+          [ "$obstacle" = none ] && removed=(--set "Obstacle 1/Removed at=$removal")
+          rm -rf "$directory"
+          run_scene "$directory" "$n" "$t" "$method" --set "Output/Checkpoint interval=$t" \
+            ${removed[@]+"${removed[@]}"} || true
+          valgrind --tool=callgrind --callgrind-out-file="$directory/callgrind.out" \
+            --log-file="$directory/callgrind.log" --collect-atstart=no \
+            --toggle-collect='clothsim::TimeStepper::run()' \
+            "$clothsim" --restart "$directory" --set "Time/End time=$finish" \
+            >>"$directory/run.log" 2>&1 || true
+          # One "Collected : N" line per thread and process: their sum.
+          counted=$(awk '/Collected :/ { n += $NF; found = 1 } END { if (found) print n }' \
+            "$directory/callgrind.log" 2>/dev/null || true)
+          newton=$(awk -F, -v t="$t" 'NR == 1 { for (c = 1; c <= NF; ++c) col[$c] = c; next }
+            $col["time"] > t + 1e-9 { n += $col["newton_iterations"] } END { print n + 0 }' \
+            "$directory/statistics.csv" 2>/dev/null || echo 0)
+          if grep -q '^done: ' "$directory/run.log" && [ -n "$counted" ]; then
+            echo "ok, $counted instructions" >&2
+          else
+            echo FAILED >&2
+            counted=0 && failed=true
+          fi
+          row="$row $newton $counted"
+        done
+        count_rows+=("$row")
+      done
+    done
+  done
+  echo
+  echo "the same $window steps from the same state, instructions (callgrind, TimeStepper::run()):"
+  printf '%s\n' "${count_rows[@]}" | awk '
+    function r(a, b) { return b > 0 ? sprintf("%.2f", a / b) : "-" }
+    BEGIN { f = "%-7s %4s %6s %8s %8s %7s %12s %12s %7s %10s\n"
+            printf f, "method", "N", "T", "newton", "newton", "ratio", "instr.", "instr.", "ratio",
+              "per newton"
+            printf f, "", "", "", "sphere", "none", "", "sphere", "none", "", "ratio" }
+    { printf f, $1, $2, $3, $4, $6, r($4, $6), $5, $7, r($5, $7),
+        ($4 > 0 && $6 > 0 ? r($5 / $4, $7 / $6) : "-")
+      k = $1 SUBSEP $2; if (!(k in n1)) order[++m] = k
+      n1[k] += $4; i1[k] += $5; n2[k] += $6; i2[k] += $7 }
+    END { for (i = 1; i <= m; ++i) { split(order[i], q, SUBSEP); k = order[i]
+            printf f, q[1], q[2], "all", n1[k], n2[k], r(n1[k], n2[k]), i1[k], i2[k],
+              r(i1[k], i2[k]), (n1[k] > 0 && n2[k] > 0 ? r(i1[k] / n1[k], i2[k] / n2[k]) : "-") } }'
 fi
 
 if [ "$failed" = true ]; then
