@@ -310,7 +310,7 @@ if [ "$instructions" = true ]; then
             "$clothsim" --restart "$directory" --set "Time/End time=$finish" \
             >>"$directory/run.log" 2>&1 || true
           # One "Collected : N" line per thread and process: their sum.
-          counted=$(awk '/Collected :/ { n += $NF; found = 1 } END { if (found) print n }' \
+          counted=$(awk '/Collected :/ { n += $NF; found = 1 } END { if (found) printf "%.0f\n", n }' \
             "$directory/callgrind.log" 2>/dev/null || true)
           newton=$(awk -F, -v t="$t" 'NR == 1 { for (c = 1; c <= NF; ++c) col[$c] = c; next }
             $col["time"] > t + 1e-9 { n += $col["newton_iterations"] } END { print n + 0 }' \
@@ -340,7 +340,8 @@ if [ "$instructions" = true ]; then
       k = $1 SUBSEP $2; if (!(k in n1)) order[++m] = k
       n1[k] += $4; i1[k] += $5; n2[k] += $6; i2[k] += $7 }
     END { for (i = 1; i <= m; ++i) { split(order[i], q, SUBSEP); k = order[i]
-            printf f, q[1], q[2], "all", n1[k], n2[k], r(n1[k], n2[k]), i1[k], i2[k],
+            printf f, q[1], q[2], "all", n1[k], n2[k], r(n1[k], n2[k]), sprintf("%.0f", i1[k]),
+              sprintf("%.0f", i2[k]),
               r(i1[k], i2[k]), (n1[k] > 0 && n2[k] > 0 ? r(i1[k] / n1[k], i2[k] / n2[k]) : "-") } }'
 fi
 
