@@ -131,23 +131,16 @@ namespace
   bool
   check_removed(ConditionalOStream &pcout, const std::string &mesh)
   {
-    const double theta = numbers::PI / 18., g = 9.81;
-    GuardedRun   result;
-    if (!run(pcout,
-             "removed",
-             join(incline(mesh, theta),
-                  {"Time/Integrator=backward euler",
-                   "Obstacle 1/Translation=0; 0; -100*(t>0.31)",
-                   "Obstacle 1/Removed at=0.31"}),
-             result))
-      return false;
-    return check_free_fall(pcout,
-                           "removed",
-                           root / "removed",
-                           Tensor<1, 3>({g * std::sin(theta), 0., -g * std::cos(theta)}),
-                           0.3,
-                           0.6,
-                           1. / 60.);
+    GuardedRun result;
+    return run(pcout,
+               "removed",
+               join({"Mesh/Mesh file=" + mesh,
+                     "Obstacle 1/Shape=plane",
+                     "Obstacle 1/Center=0, 0, -0.004",
+                     "Obstacle 1/Axis=0, 0, 1"},
+                    removed_support_settings()),
+               result) &&
+           check_free_fall(pcout, "removed", root / "removed");
   }
 
   bool

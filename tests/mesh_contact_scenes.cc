@@ -333,28 +333,14 @@ namespace
   bool
   check_removed(ConditionalOStream &pcout, const std::string &mesh)
   {
-    const double theta = numbers::PI / 18., g = 9.81;
-    GuardedRun   result;
-    if (!run(pcout,
-             "removed",
-             "params/contact/sheet-on-sphere.prm",
-             join(on_mesh(mesh, write_flat_mesh(-0.004, 8)),
-                  {"Obstacle 1/Friction=0.3",
-                   "Loads/Gravity=" + number(g * std::sin(theta)) + ", 0, " +
-                     number(-g * std::cos(theta)),
-                   "Time/Integrator=backward euler",
-                   "Time/End time=0.6",
-                   "Obstacle 1/Translation=0; 0; -100*(t>0.31)",
-                   "Obstacle 1/Removed at=0.31"}),
-             result))
-      return false;
-    return check_free_fall(pcout,
-                           "removed",
-                           root / "removed",
-                           Tensor<1, 3>({g * std::sin(theta), 0., -g * std::cos(theta)}),
-                           0.3,
-                           0.6,
-                           1. / 60.);
+    GuardedRun result;
+    return run(pcout,
+               "removed",
+               "params/contact/sheet-on-sphere.prm",
+               join(on_mesh(mesh, write_flat_mesh(-0.004, 8)),
+                    removed_support_settings()),
+               result) &&
+           check_free_fall(pcout, "removed", root / "removed");
   }
 
   bool
