@@ -5,6 +5,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <filesystem>
+
 #include "io/input_error.h"
 #include "io/parameters_detail.h"
 
@@ -83,6 +85,14 @@ namespace clothsim
       throw InputError("",
                        "Mesh/Mesh file",
                        "is empty; expected a gmsh mesh file (.msh)");
+    // The cloth's mesh is read as a .msh (generated from the .geo of the same name when
+    // missing); a .geo named here would be read unmeshed, as "no triangles".
+    if (std::filesystem::path(mesh_file).extension() == ".geo")
+      throw InputError("",
+                       "Mesh/Mesh file",
+                       "'" + mesh_file +
+                         "' is a gmsh script; name the .msh of the same name instead "
+                         "(gmsh generates it from the .geo when it is missing)");
     global_refinements = prm.get_integer("Global refinements");
     surface            = prm.get("Surface");
     surface_center     = Point<3>(vector_entry(prm.get("Surface center")));
