@@ -45,8 +45,9 @@
 #                       checkpoint reading excluded): a fourth table, free of the machine's
 #                       timing noise. Slow: callgrind runs about 50 times slower (N = 21:
 #                       seconds per window, N = 41: about a minute, N = 81: minutes).
-#                       Not with 'Contact/Self contact' (it has no checkpoints yet: the
-#                       runs to T stop with that message, and the windows are FAILED)
+#                       With 'Contact/Self contact = creases' but not 'true' (it has
+#                       no checkpoints yet: the runs to T stop with that message, and
+#                       the windows are FAILED)
 #   --set "S/N=V"       passed to every run (repeatable)
 #   --output DIR        where the runs write (DIR/<method>-N<N>-<sphere|none|from-T>/,
 #                       run.log);

@@ -110,7 +110,11 @@ namespace clothsim
   {
     return !is_explicit(parameters.time.integrator) &&
            parameters.time.integrator != Integrator::arc_length &&
-           !parameters.contact.self_contact;
+           // Self-contact's near-pair list and full pairs' couplings change over the
+           // run and are not stored; the creases' pairs are the mesh's, in its order.
+           (!parameters.contact.self_contact ||
+            (parameters.contact.self_contact_creases &&
+             !parameters.contact.self_contact_full_pairs));
   }
 
 

@@ -295,7 +295,7 @@ namespace clothsim
       throw InputError(file,
                        "Output/Checkpoint interval",
                        "checkpoints need an implicit integrator and no 'Contact/Self "
-                       "contact' (0 for this run)");
+                       "contact = true' nor 'full pairs' (0 for this run)");
     io::run_collectively(communicator, [&]() {
       if (!is_root)
         return;

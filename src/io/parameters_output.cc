@@ -109,7 +109,8 @@ namespace clothsim
       "interrupted). A checkpoint, checkpoint.bin in the output directory, holds the "
       "run's whole state; clothsim --restart DIR continues the run from the last "
       "one, bit-identically. With a positive interval the end state is one too. "
-      "Implicit integrators only.");
+      "Implicit integrators only, and not with 'Contact/Self contact = true' or "
+      "'Self contact tangent = full pairs' ('creases' with vertex blocks is fine).");
     prm.declare_entry(
       "Progress",
       "auto",
