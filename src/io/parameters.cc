@@ -241,6 +241,14 @@ namespace clothsim
           " needs 'backward euler', 'bdf2' or 'static' (the barrier holds "
           "the state solved for, which the midpoint rules and the explicit "
           "integrators do not end on, and a linear solve does not keep)");
+    if (parameters.contact.adaptive_stiffness &&
+        (parameters.nonlinear_solver.line_search == "full step" ||
+         parameters.nonlinear_solver.method == NewtonMethod::single_step))
+      throw InputError(file,
+                       "Contact/Adaptive barrier stiffness",
+                       "raises the stiffness at the iterates the energy line search "
+                       "accepts: it needs 'Nonlinear solver/Line search = energy' and a "
+                       "method other than 'single step'");
     if (mass_spring && parameters.material.orthotropic &&
         parameters.mass_spring.derived_constants)
       throw InputError(file,

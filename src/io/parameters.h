@@ -335,16 +335,19 @@ namespace clothsim
   {
     static constexpr unsigned int max_obstacles = 8;
 
-    double       thickness;               // d̂, m
-    double       barrier_acceleration;    // a_b, m/s²
-    double       slip_velocity;           // ε_v, m/s
-    bool         edge_contact;            // cloth edges/triangles vs core features
-    std::string  edge_contact_tangent;    // automatic | gauss-newton | projected exact
-    unsigned int friction_updates;        // solves per step
-    bool         self_contact;            // the cloth with itself
-    bool         self_contact_creases;    // only the pairs at each interior edge
-    bool         self_contact_full_pairs; // whole pair Hessians in the tangent
-    double       self_friction;           // μ between layers of the cloth
+    double       thickness;                // d̂, m
+    double       barrier_acceleration;     // a_b, m/s²
+    bool         adaptive_stiffness;       // IPC's adaptive κ
+    double       stiffening_distance;      // its trigger, a fraction of d̂
+    double       max_barrier_acceleration; // its largest a_b, m/s²
+    double       slip_velocity;            // ε_v, m/s
+    bool         edge_contact;             // cloth edges/triangles vs core features
+    std::string  edge_contact_tangent;     // automatic | gauss-newton | projected exact
+    unsigned int friction_updates;         // solves per step
+    bool         self_contact;             // the cloth with itself
+    bool         self_contact_creases;     // only the pairs at each interior edge
+    bool         self_contact_full_pairs;  // whole pair Hessians in the tangent
+    double       self_friction;            // μ between layers of the cloth
     std::vector<ObstacleParameters> obstacles; // the sections in use
 
     static void

@@ -61,6 +61,30 @@ namespace clothsim
                       "s(d) = -(d - d̂)² ln(d/d̂), so at d = d̂/2 it is pushed with 1.19 m "
                       "a_b. A vertex resting under gravity g sits where 3 (1 - d/d̂)² is "
                       "about g/a_b (at 0.82 d̂ for the default).");
+    prm.declare_entry(
+      "Adaptive barrier stiffness",
+      "false",
+      Patterns::Bool(),
+      "IPC's adaptive stiffness (Li et al. 2020): after each Newton iterate whose "
+      "closest pair (a cloth vertex or pair against an obstacle; for self-contact, "
+      "two parts of the cloth) is nearer than 'Stiffening distance' times "
+      "'Thickness' and nearer than at the iterate before, the barrier stiffness of "
+      "that contact (obstacles, or self-contact) doubles, up to 'Maximum barrier "
+      "stiffness'. It is never lowered during the run (checkpoints keep it). For "
+      "impacts whose forces would press a pair towards round-off, where Newton's "
+      "step cap stalls (README, Contact with obstacles). Needs the energy line "
+      "search (not 'Line search = full step').");
+    prm.declare_entry("Stiffening distance",
+                      "0.01",
+                      Patterns::Double(1e-12, 1.),
+                      "With 'Adaptive barrier stiffness': the distance below which a "
+                      "closing pair doubles the barrier stiffness, as a fraction of "
+                      "'Thickness'.");
+    prm.declare_entry("Maximum barrier stiffness",
+                      "1e6",
+                      Patterns::Double(1e-6, 1e15),
+                      "With 'Adaptive barrier stiffness': the largest a_b (m/s²) it "
+                      "raises the stiffness to; at least 'Barrier stiffness'.");
     prm.declare_entry("Static friction velocity",
                       "1e-3",
                       Patterns::Double(1e-12, 1e3),
@@ -223,8 +247,16 @@ namespace clothsim
   ContactParameters::parse_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Contact");
-    thickness               = prm.get_double("Thickness");
-    barrier_acceleration    = prm.get_double("Barrier stiffness");
+    thickness                = prm.get_double("Thickness");
+    barrier_acceleration     = prm.get_double("Barrier stiffness");
+    adaptive_stiffness       = prm.get_bool("Adaptive barrier stiffness");
+    stiffening_distance      = prm.get_double("Stiffening distance");
+    max_barrier_acceleration = prm.get_double("Maximum barrier stiffness");
+    if (adaptive_stiffness && max_barrier_acceleration < barrier_acceleration)
+      throw InputError("",
+                       "Contact/Maximum barrier stiffness",
+                       "is below 'Barrier stiffness' (" +
+                         std::to_string(barrier_acceleration) + " m/s²)");
     slip_velocity           = prm.get_double("Static friction velocity");
     friction_updates        = prm.get_integer("Friction updates");
     edge_contact            = prm.get_bool("Edge contact");

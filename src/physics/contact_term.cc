@@ -45,6 +45,7 @@ namespace clothsim::physics
     , settings(settings)
     , discretization(discretization)
     , mesh_pairs(this->obstacles, this->settings, discretization, lumped_masses)
+    , stiffness(settings.stiffness)
   {
     discretization.initialize_ghosted(step_start);
     // The owned vertices, in the order of their first triangle.
@@ -86,8 +87,10 @@ namespace clothsim::physics
                                MatrixType                      *hessian,
                                RankVector *) const
   {
-    state_time          = step.time;
-    const double  d_hat = settings.thickness;
+    state_time            = step.time;
+    const double  d_hat   = settings.thickness;
+    const double  scale   = stiffness.scale();
+    double        closest = std::numeric_limits<double>::infinity();
     const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
     const std::vector<RigidPose> poses = poses_at(step.time);
 
@@ -110,14 +113,17 @@ namespace clothsim::physics
               continue;
             // The value alone first: most vertices are beyond d̂.
             const double distance = obstacles[o].distance(poses[o], x, false).value;
+            closest               = std::min(closest, distance);
             if (distance >= d_hat)
               continue;
-            value += vertex.kappa * contact::barrier(distance, d_hat);
+            value += scale * vertex.kappa * contact::barrier(distance, d_hat);
             if (!derivatives || distance <= 0.)
               continue;
             const SignedDistance d = obstacles[o].distance(poses[o], x, true);
-            const double first  = vertex.kappa * contact::barrier_first(d.value, d_hat);
-            const double second = vertex.kappa * contact::barrier_second(d.value, d_hat);
+            const double         first =
+              scale * vertex.kappa * contact::barrier_first(d.value, d_hat);
+            const double second =
+              scale * vertex.kappa * contact::barrier_second(d.value, d_hat);
             if (!near) // the sums, zeroed only for the vertices within d̂
               {
                 g = 0.;
@@ -150,8 +156,12 @@ namespace clothsim::physics
           }
       }
     if (!mesh_pairs.empty())
-      value += mesh_pairs.add_to_step(
-        local, poses, step.projected_tangent, constraints, gradient, hessian);
+      {
+        value += mesh_pairs.add_to_step(
+          local, poses, step.projected_tangent, constraints, gradient, hessian);
+        closest = std::min(closest, mesh_pairs.closest_assembled());
+      }
+    assembled_closest = closest;
     return value;
   }
 
@@ -220,7 +230,8 @@ namespace clothsim::physics
                 LaggedContact contact = vertex_contact(k, o, carried);
                 tangent_basis(obstacles[o].distance(end[o], carried, true).gradient,
                               contact.tangent);
-                contact.mu_lambda = obstacles[o].friction() * vertex.kappa *
+                contact.mu_lambda = obstacles[o].friction() * stiffness.scale() *
+                                    vertex.kappa *
                                     std::abs(contact::barrier_first(d_n, d_hat));
                 lagged.push_back(contact);
               }
@@ -346,7 +357,7 @@ namespace clothsim::physics
                 vertex_contact(k, o, carried_points[k * n_obstacles + o]);
               tangent_basis(d.gradient, contact.tangent);
               mu_lambda = contact.mu_lambda =
-                obstacles[o].friction() * table[k].kappa *
+                obstacles[o].friction() * stiffness.scale() * table[k].kappa *
                 std::abs(contact::barrier_first(d.value, d_hat));
               lagged.push_back(contact);
             }
@@ -435,8 +446,29 @@ namespace clothsim::physics
   ObstacleContact::report(const VectorType &u, const double time) const
   {
     const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
-    const std::vector<RigidPose> poses = poses_at(time);
-    Report                       result{std::numeric_limits<double>::infinity(),
+    const std::vector<RigidPose> poses  = poses_at(time);
+    Report                       result = local_report(local, poses);
+    result.min_surface_distance         = result.min_distance;
+    lower_to_surface_distance(local, poses, result.min_surface_distance);
+    const MPI_Comm communicator = discretization.get_communicator();
+    result.min_distance         = Utilities::MPI::min(result.min_distance, communicator);
+    result.min_surface_distance =
+      Utilities::MPI::min(result.min_surface_distance, communicator);
+    for (unsigned int o = 0; o < obstacles.size(); ++o)
+      {
+        for (unsigned int c = 0; c < 3; ++c)
+          result.forces[o][c] = Utilities::MPI::sum(result.forces[o][c], communicator);
+        result.contacts[o] = Utilities::MPI::sum(result.contacts[o], communicator);
+      }
+    return result;
+  }
+
+
+  ObstacleContact::Report
+  ObstacleContact::local_report(const double                 *local,
+                                const std::vector<RigidPose> &poses) const
+  {
+    Report result{std::numeric_limits<double>::infinity(),
                   std::numeric_limits<double>::infinity(),
                   std::vector<Tensor<1, 3>>(obstacles.size()),
                   std::vector<unsigned int>(obstacles.size(), 0)};
@@ -453,7 +485,7 @@ namespace clothsim::physics
               continue;
             ++result.contacts[o];
             // The force on the cloth, -κ s'(d) ∇d (outward).
-            result.forces[o] -= vertex.kappa *
+            result.forces[o] -= stiffness.scale() * vertex.kappa *
                                 contact::barrier_first(d.value, settings.thickness) *
                                 d.gradient;
           }
@@ -461,19 +493,28 @@ namespace clothsim::physics
     if (!mesh_pairs.empty())
       mesh_pairs.report(
         local, poses, result.min_distance, result.forces, result.contacts);
-    result.min_surface_distance = result.min_distance;
-    lower_to_surface_distance(local, poses, result.min_surface_distance);
-    const MPI_Comm communicator = discretization.get_communicator();
-    result.min_distance         = Utilities::MPI::min(result.min_distance, communicator);
-    result.min_surface_distance =
-      Utilities::MPI::min(result.min_surface_distance, communicator);
-    for (unsigned int o = 0; o < obstacles.size(); ++o)
-      {
-        for (unsigned int c = 0; c < 3; ++c)
-          result.forces[o][c] = Utilities::MPI::sum(result.forces[o][c], communicator);
-        result.contacts[o] = Utilities::MPI::sum(result.contacts[o], communicator);
-      }
     return result;
+  }
+
+
+  double
+  ObstacleContact::closest_distance(const VectorType &u, const double time) const
+  {
+    const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
+    return Utilities::MPI::min(local_report(local, poses_at(time)).min_distance,
+                               discretization.get_communicator());
+  }
+
+
+  bool
+  ObstacleContact::adapt_stiffness()
+  {
+    if (!stiffness.adaptive() ||
+        !stiffness.observe(
+          Utilities::MPI::min(assembled_closest, discretization.get_communicator())))
+      return false;
+    mesh_pairs.set_stiffness_scale(stiffness.scale());
+    return true;
   }
 
 

@@ -13,10 +13,12 @@
 
 #include "mesh/discretization.h"
 #include "mesh/element_matrix_scatter.h"
+#include "physics/barrier_stiffness.h"
 #include "physics/mesh_contact.h"
 #include "physics/obstacle.h"
 #include "physics/term.h"
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,8 @@ namespace clothsim::physics
     // Hessian projected if true, else Gauss-Newton's (physics/pair_barrier.h; none
     // given: Gauss-Newton's for all).
     std::vector<bool> core_pairs_projected_exact = {};
+    // IPC's adaptive stiffness (physics/barrier_stiffness.h); off by default.
+    StiffnessSettings stiffness = {};
   };
 
   // A cloth vertex in a lagged contact: its dofs, their indices in the values that
@@ -168,6 +172,35 @@ namespace clothsim::physics
                  const VectorType &direction,
                  const double      time) const;
 
+    // IPC's adaptive barrier stiffness (physics/barrier_stiffness.h): before each
+    // attempt of a step from u_n (ghosted) at t_n, the closest distance there
+    // (report()'s min_distance); at each iterate Newton accepts, after add_to_step
+    // there, the closest distance add_to_step met (every vertex's, every pair's within
+    // d̂) may raise κ; returns whether it did. Collective.
+    void
+    begin_attempt(const VectorType &u_n, const double t_n)
+    {
+      if (stiffness.adaptive())
+        stiffness.begin_attempt(closest_distance(u_n, t_n));
+    }
+    bool
+    adapt_stiffness();
+    const AdaptiveStiffness &
+    barrier_stiffness() const
+    {
+      return stiffness;
+    }
+    std::vector<double>
+    saved_state() const override
+    {
+      return stiffness.saved();
+    }
+    void
+    restore_state(const std::vector<double> &state) override
+    {
+      stiffness.restore(state);
+      mesh_pairs.set_stiffness_scale(stiffness.scale());
+    }
     // The smallest distance from an obstacle of what contact keeps off them (the
     // cloth's vertices, and the pairs of edge contact and of mesh obstacles) and of the
     // cloth's whole surface (its triangles measured against the analytic obstacles'
@@ -183,6 +216,9 @@ namespace clothsim::physics
     };
     Report
     report(const VectorType &u, const double time) const;
+    // report(u, time).min_distance alone. Collective.
+    double
+    closest_distance(const VectorType &u, const double time) const;
 
     const std::vector<Obstacle> &
     get_obstacles() const
@@ -241,6 +277,10 @@ namespace clothsim::physics
     {
       return obstacles[o].shape().core == ObstacleCore::mesh;
     }
+    // report() but for the surface distance, on this rank (not reduced), `local` a
+    // ghosted vector's values.
+    Report
+    local_report(const double *local, const std::vector<RigidPose> &poses) const;
     // A vertex contact's friction data but for its tangent plane and μ λ.
     LaggedContact
     vertex_contact(const unsigned int k,
@@ -295,7 +335,10 @@ namespace clothsim::physics
     std::vector<Point<3>>  carried_points;
     std::vector<RigidPose> start_poses, end_poses;
     // Triangle-mesh obstacles (by primitive pairs) and the step's start (ghosted).
-    MeshContact mesh_pairs;
+    MeshContact       mesh_pairs;
+    AdaptiveStiffness stiffness; // κ's scale, for the vertices and mesh_pairs
+    // The closest distance the last add_to_step met on this rank (m).
+    mutable double assembled_closest = std::numeric_limits<double>::infinity();
     // The vertices' barrier Hessians added by position (vertex k is element k).
     mutable mesh::ElementMatrixScatter vertex_scatter;
     VectorType                         step_start;

@@ -9,6 +9,7 @@
 #include "physics/pair_barrier.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -234,6 +235,7 @@ namespace clothsim::physics
     double             value = 0.;
     FullMatrix<double> H;
     std::vector<types::global_dof_index> dofs;
+    assembled_closest = std::numeric_limits<double>::infinity();
     vertex_gradient.resize(cloth.vertices.size());
     touched.resize(cloth.vertices.size(), false);
     if (hessian != nullptr)
@@ -253,7 +255,7 @@ namespace clothsim::physics
       const PairBarrier b    = pair_barrier(pair.kind,
                                          x,
                                          pair.moving,
-                                         pair.kappa,
+                                         kappa_scale * pair.kappa,
                                          d_hat,
                                          pair.threshold,
                                          order,
@@ -261,6 +263,7 @@ namespace clothsim::physics
                                          false,
                                          r);
       value += b.value;
+      assembled_closest = std::min(assembled_closest, b.distance);
       if (b.n == 0 || !std::isfinite(b.value))
         return;
       dofs.clear();
@@ -360,7 +363,7 @@ namespace clothsim::physics
       const PairBarrier b = pair_barrier(pair.kind,
                                          x,
                                          pair.moving,
-                                         pair.kappa,
+                                         kappa_scale * pair.kappa,
                                          d_hat,
                                          pair.threshold,
                                          1,
@@ -503,7 +506,8 @@ namespace clothsim::physics
             for (unsigned int i = 0; i < 4; ++i)
               r += w[i] * x[i];
             // λ = -∂b/∂d (the mollifier scales it for edge-edge pairs).
-            double lambda = pair.kappa * std::abs(contact::barrier_first(d, d_hat));
+            double lambda =
+              kappa_scale * pair.kappa * std::abs(contact::barrier_first(d, d_hat));
             if (pair.threshold > 0.)
               lambda *=
                 mollifier(cross_product_3d(x[1] - x[0], x[3] - x[2]).norm_square(),

@@ -42,6 +42,19 @@ namespace clothsim::physics
     {
       return mesh_obstacles.empty();
     }
+    // The closest of the pairs the last add_to_step evaluated on this rank (m; +inf if
+    // none: every pair within d̂ is among them).
+    double
+    closest_assembled() const
+    {
+      return assembled_closest;
+    }
+    // Every pair's κ times `scale` from now on (physics/barrier_stiffness.h).
+    void
+    set_stiffness_scale(const double scale)
+    {
+      kappa_scale = scale;
+    }
 
     // The cloth as a surface: this rank's triangles and their vertices.
     const ClothSurface &
@@ -182,6 +195,8 @@ namespace clothsim::physics
     const std::vector<Obstacle> &obstacles;
     const MPI_Comm               communicator;
     const ContactSettings       &settings;
+    double                       kappa_scale       = 1.; // set_stiffness_scale
+    mutable double               assembled_closest = 0.; // closest_assembled
     // Indices into `obstacles` of those with a surface: the meshes, and the analytic
     // obstacles' core features (physics/obstacle.h).
     std::vector<unsigned int> mesh_obstacles;

@@ -118,6 +118,7 @@ namespace clothsim::physics
     const DistanceType type    = distance_type(kind, x);
     PairBarrier        result;
     const double       d = std::sqrt(squared_distance(type, x)) - offset;
+    result.distance      = d;
     if (d >= d_hat || d <= 0.)
       {
         result.value = kappa * contact::barrier(d, d_hat);

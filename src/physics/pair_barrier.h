@@ -30,8 +30,9 @@ namespace clothsim::physics
 {
   struct PairBarrier
   {
-    double                 value = 0.;
-    unsigned int           n     = 0; // derivative entries: 3 per moving point, in order
+    double                 value    = 0.;
+    double                 distance = 0.; // d, m (less the offset)
+    unsigned int           n = 0; // derivative entries: 3 per moving point, in order
     std::array<double, 12> gradient{};
     // n x n, row-major; only those entries are set (a pair beyond d̂ has n = 0 and costs
     // no zeroing of the whole array).

@@ -57,6 +57,7 @@ namespace clothsim::physics
     , creases_only(creases_only)
     , whole(discretization, lumped_masses)
     , cloth(whole.surface())
+    , stiffness(settings.stiffness)
   {
     for (const auto &triangle : cloth.triangles)
       for (unsigned int v = 0; v < 3; ++v)
@@ -125,6 +126,7 @@ namespace clothsim::physics
     off_diagonal.clear();
     std::vector<unsigned int> touched;
     double                    value = 0.;
+    assembled_closest               = std::numeric_limits<double>::infinity();
     for_each_near_pair(u_local, nullptr, d_hat, [&](const Pair &pair) {
       const PairPoints x = pair_points(pair, u_local);
       if (boxes_apart(pair.kind, x, d_hat))
@@ -133,13 +135,14 @@ namespace clothsim::physics
         pair_barrier(pair.kind,
                      x,
                      moving,
-                     pair.kappa,
+                     stiffness.scale() * pair.kappa,
                      d_hat,
                      pair.threshold,
                      order,
                      step.projected_tangent ? PairHessian::gauss_newton
                                             : PairHessian::exact,
                      /*gauss_newton_mollified=*/true);
+      assembled_closest = std::min(assembled_closest, b.distance);
       if (counted(pair))
         value += b.value;
       if (b.n == 0 || !std::isfinite(b.value))
@@ -239,7 +242,7 @@ namespace clothsim::physics
       value += pair_barrier(pair.kind,
                             x,
                             moving,
-                            pair.kappa,
+                            stiffness.scale() * pair.kappa,
                             settings.thickness,
                             pair.threshold,
                             0,
@@ -344,7 +347,8 @@ namespace clothsim::physics
           ? mollifier(cross_product_3d(x[1] - x[0], x[3] - x[2]).norm_square(),
                       pair.threshold)
           : 1.;
-      const double lambda = -pair.kappa * m * contact::barrier_first(d, d_hat);
+      const double lambda =
+        -stiffness.scale() * pair.kappa * m * contact::barrier_first(d, d_hat);
       if (lambda <= 0.)
         return;
       const std::array<double, 4> w = closest_point_weights(type, x);
@@ -404,6 +408,23 @@ namespace clothsim::physics
     result.min_distance         = Utilities::MPI::min(result.min_distance, communicator);
     result.pairs                = Utilities::MPI::sum(result.pairs, communicator);
     return result;
+  }
+
+
+  void
+  SelfContact::begin_attempt(const VectorType &u_n)
+  {
+    if (stiffness.adaptive())
+      stiffness.begin_attempt(report(u_n, settings.stiffness.distance).min_distance);
+  }
+
+
+  bool
+  SelfContact::adapt_stiffness()
+  {
+    return stiffness.adaptive() &&
+           stiffness.observe(
+             Utilities::MPI::min(assembled_closest, whole.get_communicator()));
   }
 
 

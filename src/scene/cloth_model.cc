@@ -291,6 +291,16 @@ namespace clothsim
   }
 
 
+  bool
+  ClothModel::adapt_to_iterate()
+  {
+    // Both are asked: each keeps its closest distance at the iterate before.
+    const bool obstacles = contact != nullptr && contact->adapt_stiffness();
+    const bool self      = self_contact != nullptr && self_contact->adapt_stiffness();
+    return obstacles || self;
+  }
+
+
   std::string
   ClothModel::begin_step(const double      t_n,
                          const double      t_new,
@@ -298,6 +308,16 @@ namespace clothsim
                          VectorType       &u_new,
                          const double      path_end)
   {
+    if (adapts_stiffness())
+      {
+        VectorType start;
+        initialize_ghosted(start);
+        import_ghosts(u_n, start);
+        if (contact != nullptr)
+          contact->begin_attempt(start, t_n);
+        if (self_contact != nullptr)
+          self_contact->begin_attempt(start);
+      }
     if (model->caps_steps())
       {
         // The terms' caps (bending tilts) on the straight path from u_n to the step's
@@ -360,12 +380,17 @@ namespace clothsim
             for (const char *part : {"_force_x", "_force_y", "_force_z", "_contacts"})
               columns.push_back(name + part);
           }
+        if (adapts_stiffness())
+          columns.push_back("contact_barrier_stiffness");
       }
     // Self-contact: the smallest distance between primitives that share no vertex (m;
     // at most ten times the thickness: none closer), and the pairs within the thickness.
+    // With 'Adaptive barrier stiffness', each contact's a_b as raised (m/s²).
     if (self_contact != nullptr)
       for (const char *column : {"self_contact_min_distance", "self_contact_pairs"})
         columns.push_back(column);
+    if (self_contact != nullptr && adapts_stiffness())
+      columns.push_back("self_contact_barrier_stiffness");
     if (parameters.output.drape_disc_radius > 0.)
       for (const char *column : {"projected_area", "drape_coefficient"})
         columns.push_back(column);
@@ -398,15 +423,18 @@ namespace clothsim
   ClothModel::add_step_report(const VectorType &u, EnergyReport energies) const
   {
     // The contact, drape and intersection columns are the last ones (energy_columns()).
-    const double drape_radius = parameters.output.drape_disc_radius;
-    const bool   intersecting = parameters.output.check_intersections;
-    std::size_t  column       = energies.columns.size() - (drape_radius > 0. ? 2 : 0) -
-                         (intersecting ? 1 : 0) - (self_contact != nullptr ? 2 : 0);
+    const double       drape_radius = parameters.output.drape_disc_radius;
+    const bool         intersecting = parameters.output.check_intersections;
+    const unsigned int adaptive     = adapts_stiffness() ? 1 : 0;
+    const double       a_b          = parameters.contact.barrier_acceleration;
+    std::size_t        column = energies.columns.size() - (drape_radius > 0. ? 2 : 0) -
+                         (intersecting ? 1 : 0) -
+                         (self_contact != nullptr ? 2 + adaptive : 0);
     if (contact != nullptr)
       {
         const physics::ObstacleContact::Report contacts =
           contact->report(u, contact->time_of_state());
-        column -= 2 + 4 * contacts.forces.size();
+        column -= 2 + 4 * contacts.forces.size() + adaptive;
         energies.columns[column++] = contacts.min_distance;
         energies.columns[column++] = contacts.min_surface_distance;
         for (unsigned int o = 0; o < contacts.forces.size(); ++o)
@@ -415,6 +443,8 @@ namespace clothsim
               energies.columns[column++] = contacts.forces[o][c];
             energies.columns[column++] = contacts.contacts[o];
           }
+        if (adaptive)
+          energies.columns[column++] = a_b * contact->barrier_stiffness().scale();
       }
     if (self_contact != nullptr)
       {
@@ -422,6 +452,8 @@ namespace clothsim
         const physics::SelfContact::Report pairs = self_contact->report(u, range);
         energies.columns[column++]               = std::min(pairs.min_distance, range);
         energies.columns[column++]               = pairs.pairs;
+        if (adaptive)
+          energies.columns[column++] = a_b * self_contact->barrier_stiffness().scale();
       }
     if (drape_radius == 0. && !intersecting)
       return energies;

@@ -220,6 +220,13 @@ namespace clothsim
     }
     bool
     update_couplings(const VectorType &u_n, const VectorType &u_new) override;
+    bool
+    adapts_stiffness() const override
+    {
+      return parameters.contact.adaptive_stiffness && has_contact();
+    }
+    bool
+    adapt_to_iterate() override;
     double
     relag_friction(const VectorType &u) override
     {

@@ -163,9 +163,7 @@ namespace clothsim
       {
         VectorType masses;
         lumped_masses(masses);
-        physics::ContactSettings       settings{given.thickness,
-                                          given.barrier_acceleration,
-                                          given.slip_velocity};
+        physics::ContactSettings       settings  = contact_settings(given);
         std::vector<physics::Obstacle> obstacles = make_obstacles(given, parameter_file);
         settings.core_pairs_projected_exact =
           projected_exact_pairs(given, obstacles, parameters.time);

@@ -143,6 +143,19 @@ namespace clothsim
   }
 
 
+  physics::ContactSettings
+  contact_settings(const ContactParameters &given)
+  {
+    physics::ContactSettings settings{given.thickness,
+                                      given.barrier_acceleration,
+                                      given.slip_velocity};
+    settings.stiffness = {given.adaptive_stiffness,
+                          given.stiffening_distance * given.thickness,
+                          given.max_barrier_acceleration / given.barrier_acceleration};
+    return settings;
+  }
+
+
   std::unique_ptr<physics::SelfContact>
   make_self_contact(const ContactParameters    &given,
                     const std::string          &parameter_file,
@@ -150,15 +163,12 @@ namespace clothsim
                     const VectorType           &masses,
                     const VectorType           &initial)
   {
-    auto term = std::make_unique<physics::SelfContact>(
-      physics::ContactSettings{given.thickness,
-                               given.barrier_acceleration,
-                               given.slip_velocity},
-      discretization,
-      masses,
-      given.self_contact_full_pairs,
-      given.self_friction,
-      given.self_contact_creases);
+    auto term = std::make_unique<physics::SelfContact>(contact_settings(given),
+                                                       discretization,
+                                                       masses,
+                                                       given.self_contact_full_pairs,
+                                                       given.self_friction,
+                                                       given.self_contact_creases);
     // The barrier must not act at rest, nor the cloth start through itself.
     VectorType rest;
     discretization.initialize_ghosted(rest);

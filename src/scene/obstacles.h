@@ -16,6 +16,11 @@ namespace clothsim
 {
   // The obstacles in use, with their motions parsed; InputError naming `parameter_file`
   // and the entry for a bad expression.
+  // The settings obstacle contact and self-contact share: thickness, barrier stiffness
+  // (adaptive or not), friction's static slip velocity.
+  physics::ContactSettings
+  contact_settings(const ContactParameters &parameters);
+
   std::vector<physics::Obstacle>
   make_obstacles(const ContactParameters &parameters, const std::string &parameter_file);
 

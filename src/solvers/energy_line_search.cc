@@ -11,9 +11,11 @@ namespace clothsim
 {
   EnergyLineSearch::EnergyLineSearch(Objective          objective,
                                      StepCap            cap,
+                                     Adapt              adapt,
                                      const unsigned int max_halvings)
     : objective(std::move(objective))
     , cap(std::move(cap))
+    , adapt(std::move(adapt))
     , max_halvings(max_halvings)
   {}
 
@@ -53,7 +55,15 @@ namespace clothsim
     // stall_count times in a row, is a stall: the same direction crawled along
     // (measured: 19 Newton iterations in a row on steps of 2⁻⁷ to 2⁻³⁰ while ‖F‖ went
     // from 0.840 to 0.835 N, the sheet on a sphere at N = 81), and the solve fails too.
-    const auto accept = [&](const double value) {
+    const auto accept = [&](double value) {
+      // The problem may change at the accepted iterate (contact's adaptive barrier
+      // stiffness): then Φ and F are taken there again.
+      if (adapt && adapt(group.getX()))
+        {
+          value = objective(group.getX());
+          group.computeX(old_group, direction, step);
+          group.computeF();
+        }
       have_accepted_value = true;
       accepted_value      = value;
       const bool crawl =

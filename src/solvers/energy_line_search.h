@@ -28,7 +28,14 @@ namespace clothsim
     using StepCap =
       std::function<double(const NOX::Abstract::Vector &, const NOX::Abstract::Vector &)>;
 
-    EnergyLineSearch(Objective objective, StepCap cap, const unsigned int max_halvings);
+    // adapt(x): at an accepted x, whether the problem changed itself there (then Φ and
+    // F at x are taken again); may be empty.
+    using Adapt = std::function<bool(const NOX::Abstract::Vector &)>;
+
+    EnergyLineSearch(Objective          objective,
+                     StepCap            cap,
+                     Adapt              adapt,
+                     const unsigned int max_halvings);
 
     bool
     compute(NOX::Abstract::Group        &group,
@@ -58,6 +65,7 @@ namespace clothsim
     unsigned int       n_held_back = 0;
     Objective          objective;
     StepCap            cap;
+    Adapt              adapt;
     const unsigned int max_halvings;
     // Φ at the step accepted last: the next search starts from there (one evaluation
     // saved).

@@ -456,6 +456,12 @@ namespace clothsim
         context.has_direction = true;
         return context.problem.largest_step(context.u, context.direction);
       },
+      context.problem.adapts()
+        ? EnergyLineSearch::Adapt([&context](const NOX::Abstract::Vector &x) {
+            copy(epetra(x), context.u);
+            return context.problem.adapt(context.u);
+          })
+        : EnergyLineSearch::Adapt(),
       /*max_halvings=*/30));
     if (parameters.line_search == "full step" || single_step)
       line_search_parameters.set("Method", "Full Step");

@@ -65,6 +65,21 @@ namespace clothsim
       return 1.;
     }
 
+    // After the line search accepts an iterate u, before the residual there: the
+    // problem may change itself (contact's adaptive barrier stiffness); returns whether
+    // it did (then its objective and residual at u are taken again). Asked only if
+    // adapts(). Collective.
+    virtual bool
+    adapts() const
+    {
+      return false;
+    }
+    virtual bool
+    adapt(const TrilinosWrappers::MPI::Vector & /*u*/)
+    {
+      return false;
+    }
+
     // For a failed solve's message: what the largest entry of a Newton update moves and
     // where (empty: nothing to add). Collective.
     virtual std::string

@@ -117,6 +117,20 @@ namespace clothsim
     {
       return false;
     }
+    // IPC's adaptive barrier stiffness (physics/barrier_stiffness.h): whether the model
+    // has it, and at an iterate that Newton's line search accepted, right after Φ was
+    // assembled there (the contact terms keep the closest distance they met), whether
+    // a contact term raised its κ (Φ changed). Collective.
+    virtual bool
+    adapts_stiffness() const
+    {
+      return false;
+    }
+    virtual bool
+    adapt_to_iterate()
+    {
+      return false;
+    }
     // Friction solved further: its normal forces and tangent planes taken again at the
     // step's solution u (ghosted); returns their largest relative change (0 without
     // friction). Collective.

@@ -28,9 +28,9 @@ namespace clothsim
   } // namespace
 
 
-  StepProblem::StepProblem(const ModelInterface &model,
-                           const StepTerms      &terms,
-                           TimerOutput          &timer)
+  StepProblem::StepProblem(ModelInterface  &model,
+                           const StepTerms &terms,
+                           TimerOutput     &timer)
     : model(model)
     , terms(terms)
     , timer(timer)
@@ -162,6 +162,19 @@ namespace clothsim
           std::min(alpha, model.largest_step(ghosted, ghosted_direction, terms.time));
       }
     return alpha;
+  }
+
+
+  bool
+  StepProblem::adapt(const VectorType &u)
+  {
+    // The contact terms judge the point they were last assembled at.
+    if (!at_cached_point(u))
+      objective(u);
+    if (!model.adapt_to_iterate())
+      return false;
+    forget_cached_values();
+    return true;
   }
 
 

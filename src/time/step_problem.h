@@ -30,7 +30,7 @@ namespace clothsim
   public:
     // `timer` gets the "assemble energy", "assemble residual" and "assemble tangent"
     // sections.
-    StepProblem(const ModelInterface &model, const StepTerms &terms, TimerOutput &timer);
+    StepProblem(ModelInterface &model, const StepTerms &terms, TimerOutput &timer);
 
     // From now on the problem is the AVF step from the state `start` (owned, q_n) with
     // the midpoint x as unknown; `scratch` (the tangent's sparsity, or empty) holds one
@@ -62,6 +62,17 @@ namespace clothsim
     // The model's cap on the line search (contact), the obstacles at the step's time.
     double
     largest_step(const VectorType &u, const VectorType &direction) override;
+
+    // Contact's adaptive barrier stiffness at an accepted iterate u (owned; contact
+    // steps end on the state solved for, never the AVF's): Φ and its gradient are
+    // assembled anew if it changed.
+    bool
+    adapts() const override
+    {
+      return model.adapts_stiffness();
+    }
+    bool
+    adapt(const VectorType &u) override;
 
     // The largest update of a displacement dof (m).
     double
@@ -123,7 +134,7 @@ namespace clothsim
     set_path_point(const VectorType &x, const double c);
 
     std::function<double(const VectorType &, const VectorType &)> iterate_ratio;
-    const ModelInterface                                         &model;
+    ModelInterface                                               &model;
     StepTerms                                                     terms;
     TimerOutput                                                  &timer;
     VectorType        ghosted, ghosted_direction;
