@@ -75,7 +75,7 @@ namespace clothsim
       "step cap stalls (README, Contact with obstacles). Needs the energy line "
       "search (not 'Line search = full step').");
     prm.declare_entry("Stiffening distance",
-                      "0.01",
+                      "0.001",
                       Patterns::Double(1e-12, 1.),
                       "With 'Adaptive barrier stiffness': the distance below which a "
                       "closing pair doubles the barrier stiffness, as a fraction of "
