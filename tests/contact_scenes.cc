@@ -16,15 +16,14 @@
 //    pass through the sheet within one step without the continuous collision detection)
 //    hits the sheet from below and carries it: after 0.1 s (1.5 m) the sheet's centre is
 //    above the sphere's top, and no point of a triangle was ever inside the sphere.
-//    The whipping edge folds the creases' hinges shut: the scene's adaptive barrier
-//    stiffness is raised, and no step is halved (without it the run stops at 0.097 s,
-//    README "Self-contact"). With
-//    edge contact, whose 'Edge contact tangent = automatic' takes the projected exact
-//    tangent for this sphere (it moves by more than half its radius per step): with
-//    Gauss-Newton's tangent the pairs do not resist a triangle turning into the sphere,
-//    and Newton stalls on their step cap (README, "Contact with obstacles"); run so,
-//    allowed 60 iterations and no step halving, the run stops with a message that names
-//    the cap.
+//    The whipping edge folds the creases' hinges shut: with 'Adaptive barrier
+//    stiffness' self-contact's κ is raised, and no step is halved (without it the run
+//    stops at 0.097 s, README "Self-contact"). With edge contact, whose 'Edge contact
+//    tangent = automatic' takes the projected exact tangent for this sphere (it moves by
+//    more than half its radius per step): with Gauss-Newton's tangent the pairs do not
+//    resist a triangle turning into the sphere, and Newton stalls on their step cap
+//    (README, "Contact with obstacles"); run so, allowed 60 iterations and no step
+//    halving, the run stops with a message that names the cap.
 // 4. The shipped scene (N = 21, 1.5 s): the sheet comes to rest on top of the sphere, its
 //    centre within the contact thickness of the sphere's top, with no step halvings.
 // 5. A turning sphere drags the sheet that falls onto it
@@ -176,6 +175,7 @@ namespace
   check_fast_obstacle(ConditionalOStream &pcout, const std::string &mesh)
   {
     const std::vector<std::string> fast = {"Mesh/Mesh file=" + mesh,
+                                           "Contact/Adaptive barrier stiffness=true",
                                            "Obstacle 1/Radius=0.1",
                                            "Obstacle 1/Center=0.5, 0.5, -0.15",
                                            "Obstacle 1/Translation=0; 0; 15*t"};
