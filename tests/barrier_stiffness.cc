@@ -2,8 +2,9 @@
 // barrier stiffness').
 // 1. The rule: the scale doubles only at an iterate whose closest pair is below the
 //    stiffening distance and below the previous iterate's (or the step start's), up to
-//    its largest value; never without 'adaptive'; a checkpoint keeps it, and a bad one is
-//    refused.
+//    its largest value; never without 'adaptive'; an attempt starts from the scale last
+//    committed (a failed attempt's raise is taken back); a checkpoint keeps the committed
+//    scale, and a bad one is refused.
 // 2. Its use: the sheet of params/contact/sheet-on-sphere.prm (N = 21) 2 mm above a
 //    sphere, with edge contact (the vertices' barrier and the core pairs), and folded
 //    onto itself at a crease (self-contact, 'creases'): with the scale restored to 4 (as
@@ -11,7 +12,8 @@
 //    1e-12), and so are the obstacle's force and the lagged friction's μ λ. At the
 //    folded state (a hinge 0.6 d̂ apart, below a stiffening distance of d̂), an iterate
 //    that closes the hinge further raises the self-contact's scale, one that opens it
-//    does not, and the same on every rank.
+//    does not, and the same on every rank; a retry (no commit_step) starts from the
+//    scale before, the next step after commit_step from the raised one.
 
 #include "physics/barrier_stiffness.h"
 #include "app/mpi_session.h"
@@ -48,6 +50,7 @@ namespace
       wrong += stiffness.observe(distance) != raised || stiffness.scale() != scale;
     passed &= check_equal(pcout, "rule: iterates judged wrongly", wrong, 0u);
     passed &= check_equal(pcout, "rule: times raised", stiffness.raised(), 3u);
+    stiffness.commit();
     physics::AdaptiveStiffness again({true, 1e-3, 16.});
     again.restore(stiffness.saved());
     again.begin_attempt(2e-4);
@@ -65,6 +68,21 @@ namespace
         refused = true;
       }
     passed &= check(pcout, refused, "rule: a scale below 1 is refused");
+    // A failed attempt's raise is taken back by the next attempt; a committed one is not.
+    physics::AdaptiveStiffness retried({true, 1e-3, 8.});
+    retried.begin_attempt(5e-4);
+    retried.observe(4e-4);
+    const std::vector<double> during = retried.saved();
+    retried.begin_attempt(5e-4);
+    const double after_retry = retried.scale();
+    retried.observe(4e-4);
+    retried.commit();
+    retried.begin_attempt(5e-4);
+    passed &= check(pcout,
+                    during == std::vector<double>{1.} && after_retry == 1. &&
+                      retried.scale() == 2. && retried.saved() == std::vector<double>{2.},
+                    "rule: a retry starts from the committed scale (1), a checkpoint "
+                    "during an attempt keeps it; once committed (2) it stays");
     physics::AdaptiveStiffness fixed({false, 1e-3, 8.});
     fixed.begin_attempt(1.);
     passed &= check(pcout,
@@ -215,7 +233,7 @@ namespace
                          1e-12);
     // From the fold at 0.6 d̂: opened to 0.8 d̂ no raise, closed to 0.4 d̂ a raise (each
     // judged after the barrier is assembled there, as in Newton's line search).
-    crease.begin_attempt(at);
+    crease.begin_attempt(at, 0.);
     folded(0.8 * d_hat, u);
     at = u;
     value_and_gradient(crease, model, at, step);
@@ -229,6 +247,22 @@ namespace
             !open && close && crease.barrier_stiffness().scale() == 8. &&
               io::on_all_ranks(crease.barrier_stiffness().scale() == 8., MPI_COMM_WORLD),
             "crease: opened, not raised; closed, raised from 4 to 8");
+    // A retry of the step (no commit) starts again from 4; raised there to 8 and the
+    // step committed, the next step starts from 8, and a checkpoint keeps 8.
+    crease.begin_attempt(at, 0.);
+    const double retry = crease.barrier_stiffness().scale();
+    folded(0.3 * d_hat, u);
+    at = u;
+    value_and_gradient(crease, model, at, step);
+    const bool raised_again = crease.adapt_stiffness();
+    crease.commit_step(at, u);
+    crease.begin_attempt(at, 0.);
+    passed &=
+      check(pcout,
+            retry == 4. && raised_again && crease.barrier_stiffness().scale() == 8. &&
+              crease.saved_state() == std::vector<double>{8.},
+            "crease: a retry starts from the committed 4; committed at 8, the "
+            "next step starts from 8");
     return passed;
   }
 } // namespace

@@ -8,8 +8,10 @@
 // start), the scale doubles, up to a largest one. A barrier that balances a given force F
 // at distance d balances it at a larger distance once stiffer (κ |s'(d)| = F, s'
 // decreasing in magnitude with d), so pairs that forces drive towards round-off (where
-// Newton's step cap stalls) are held farther apart. The scale is never lowered during a
-// run; a checkpoint keeps it (saved(), restore()).
+// Newton's step cap stalls) are held farther apart. The scale is never lowered within an
+// accepted step; an attempt of a step starts from the scale the last accepted step
+// ended with (commit()), so what a failed attempt raised is taken back. A checkpoint
+// keeps it (saved(), restore()).
 
 #include <algorithm>
 #include <limits>
@@ -43,11 +45,13 @@ namespace clothsim::physics
     {
       return current;
     }
-    // Before each attempt of a step: the closest pair's distance at the step's start
-    // (m, the same on every rank; +inf if none is nearer than the stiffening distance).
+    // Before each attempt of a step: the scale goes back to the last committed one, and
+    // the closest pair's distance at the step's start (m, the same on every rank; +inf
+    // if none is nearer than the stiffening distance) is recorded.
     void
     begin_attempt(const double closest)
     {
+      current  = committed;
       previous = closest;
     }
     // The closest pair's distance at an accepted iterate (m, the same on every rank);
@@ -63,18 +67,26 @@ namespace clothsim::physics
       ++n_raised;
       return true;
     }
-    // How many times the scale was raised in this run (since a restart, too).
+    // After an accepted step: its scale is where the next attempts start.
+    void
+    commit()
+    {
+      committed = current;
+    }
+    // How many times the scale was raised in this run (since a restart, too; raises
+    // taken back included).
     unsigned int
     raised() const
     {
       return n_raised;
     }
 
-    // What a checkpoint keeps: the scale if adaptive, else nothing.
+    // What a checkpoint keeps: the committed scale if adaptive (what the next attempt
+    // starts from, also between a failed attempt and its retry), else nothing.
     std::vector<double>
     saved() const
     {
-      return settings.adaptive ? std::vector<double>{current} : std::vector<double>{};
+      return settings.adaptive ? std::vector<double>{committed} : std::vector<double>{};
     }
     void
     restore(const std::vector<double> &state)
@@ -82,13 +94,15 @@ namespace clothsim::physics
       if (state.size() != 1 || !(state[0] >= 1.))
         throw std::runtime_error("a checkpoint's barrier stiffness scale is not one "
                                  "number >= 1");
-      current = state[0];
+      current   = state[0];
+      committed = state[0];
     }
 
   private:
     StiffnessSettings settings;
-    double            current  = 1.;
-    double            previous = std::numeric_limits<double>::infinity();
-    unsigned int      n_raised = 0;
+    double            current   = 1.;
+    double            committed = 1.; // at the last accepted step's end
+    double            previous  = std::numeric_limits<double>::infinity();
+    unsigned int      n_raised  = 0;
   };
 } // namespace clothsim::physics

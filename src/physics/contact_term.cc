@@ -40,12 +40,13 @@ namespace clothsim::physics
                                    const ContactSettings      &settings,
                                    const mesh::Discretization &discretization,
                                    const VectorType           &lumped_masses)
-    : GlobalTerm("contact", TermKind::constraint)
+    : AdaptiveBarrierTerm("contact",
+                          settings.stiffness,
+                          discretization.get_communicator())
     , obstacles(std::move(obstacles))
     , settings(settings)
     , discretization(discretization)
     , mesh_pairs(this->obstacles, this->settings, discretization, lumped_masses)
-    , stiffness(settings.stiffness)
   {
     discretization.initialize_ghosted(step_start);
     // The owned vertices, in the order of their first triangle.
@@ -498,23 +499,11 @@ namespace clothsim::physics
 
 
   double
-  ObstacleContact::closest_distance(const VectorType &u, const double time) const
+  ObstacleContact::closest_at_start(const VectorType &u, const double time) const
   {
     const double *local = ghosted_values(u, discretization.relevant_dofs().n_elements());
     return Utilities::MPI::min(local_report(local, poses_at(time)).min_distance,
                                discretization.get_communicator());
-  }
-
-
-  bool
-  ObstacleContact::adapt_stiffness()
-  {
-    if (!stiffness.adaptive() ||
-        !stiffness.observe(
-          Utilities::MPI::min(assembled_closest, discretization.get_communicator())))
-      return false;
-    mesh_pairs.set_stiffness_scale(stiffness.scale());
-    return true;
   }
 
 

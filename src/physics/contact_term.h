@@ -13,7 +13,7 @@
 
 #include "mesh/discretization.h"
 #include "mesh/element_matrix_scatter.h"
-#include "physics/barrier_stiffness.h"
+#include "physics/adaptive_barrier_term.h"
 #include "physics/mesh_contact.h"
 #include "physics/obstacle.h"
 #include "physics/term.h"
@@ -109,7 +109,7 @@ namespace clothsim::physics
   void
   tangent_basis(const Tensor<1, 3> &n, Tensor<1, 3> (&t)[2]);
 
-  class ObstacleContact : public GlobalTerm, public LaggedContacts
+  class ObstacleContact : public AdaptiveBarrierTerm, public LaggedContacts
   {
   public:
     // `lumped_masses`: owned vector of each dof's vertex mass (kg).
@@ -172,35 +172,6 @@ namespace clothsim::physics
                  const VectorType &direction,
                  const double      time) const;
 
-    // IPC's adaptive barrier stiffness (physics/barrier_stiffness.h): before each
-    // attempt of a step from u_n (ghosted) at t_n, the closest distance there
-    // (report()'s min_distance); at each iterate Newton accepts, after add_to_step
-    // there, the closest distance add_to_step met (every vertex's, every pair's within
-    // d̂) may raise κ; returns whether it did. Collective.
-    void
-    begin_attempt(const VectorType &u_n, const double t_n)
-    {
-      if (stiffness.adaptive())
-        stiffness.begin_attempt(closest_distance(u_n, t_n));
-    }
-    bool
-    adapt_stiffness();
-    const AdaptiveStiffness &
-    barrier_stiffness() const
-    {
-      return stiffness;
-    }
-    std::vector<double>
-    saved_state() const override
-    {
-      return stiffness.saved();
-    }
-    void
-    restore_state(const std::vector<double> &state) override
-    {
-      stiffness.restore(state);
-      mesh_pairs.set_stiffness_scale(stiffness.scale());
-    }
     // The smallest distance from an obstacle of what contact keeps off them (the
     // cloth's vertices, and the pairs of edge contact and of mesh obstacles) and of the
     // cloth's whole surface (its triangles measured against the analytic obstacles'
@@ -216,10 +187,6 @@ namespace clothsim::physics
     };
     Report
     report(const VectorType &u, const double time) const;
-    // report(u, time).min_distance alone. Collective.
-    double
-    closest_distance(const VectorType &u, const double time) const;
-
     const std::vector<Obstacle> &
     get_obstacles() const
     {
@@ -272,6 +239,15 @@ namespace clothsim::physics
     position(const Vertex &vertex, const double *u_local) const;
 
   private:
+    // For the adaptive barrier stiffness: report(u_n, t_n).min_distance (every vertex's
+    // and every pair's within d̂); the scale is also mesh_pairs'.
+    double
+    closest_at_start(const VectorType &u_n, const double t_n) const override;
+    void
+    scale_changed() override
+    {
+      mesh_pairs.set_stiffness_scale(stiffness.scale());
+    }
     bool
     is_mesh(const unsigned int o) const
     {
@@ -335,10 +311,7 @@ namespace clothsim::physics
     std::vector<Point<3>>  carried_points;
     std::vector<RigidPose> start_poses, end_poses;
     // Triangle-mesh obstacles (by primitive pairs) and the step's start (ghosted).
-    MeshContact       mesh_pairs;
-    AdaptiveStiffness stiffness; // κ's scale, for the vertices and mesh_pairs
-    // The closest distance the last add_to_step met on this rank (m).
-    mutable double assembled_closest = std::numeric_limits<double>::infinity();
+    MeshContact mesh_pairs;
     // The vertices' barrier Hessians added by position (vertex k is element k).
     mutable mesh::ElementMatrixScatter vertex_scatter;
     VectorType                         step_start;

@@ -50,14 +50,15 @@ namespace clothsim::physics
                            const bool                  couple_pairs,
                            const double                friction,
                            const bool                  creases_only)
-    : GlobalTerm("self contact", TermKind::constraint)
+    : AdaptiveBarrierTerm("self contact",
+                          settings.stiffness,
+                          discretization.get_communicator())
     , settings(settings)
     , couple_pairs(couple_pairs)
     , friction(friction)
     , creases_only(creases_only)
     , whole(discretization, lumped_masses)
     , cloth(whole.surface())
-    , stiffness(settings.stiffness)
   {
     for (const auto &triangle : cloth.triangles)
       for (unsigned int v = 0; v < 3; ++v)
@@ -411,20 +412,10 @@ namespace clothsim::physics
   }
 
 
-  void
-  SelfContact::begin_attempt(const VectorType &u_n)
+  double
+  SelfContact::closest_at_start(const VectorType &u_n, const double) const
   {
-    if (stiffness.adaptive())
-      stiffness.begin_attempt(report(u_n, settings.stiffness.distance).min_distance);
-  }
-
-
-  bool
-  SelfContact::adapt_stiffness()
-  {
-    return stiffness.adaptive() &&
-           stiffness.observe(
-             Utilities::MPI::min(assembled_closest, whole.get_communicator()));
+    return report(u_n, settings.stiffness.distance).min_distance;
   }
 
 

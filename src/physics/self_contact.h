@@ -55,7 +55,7 @@
 
 namespace clothsim::physics
 {
-  class SelfContact : public GlobalTerm, public LaggedContacts
+  class SelfContact : public AdaptiveBarrierTerm, public LaggedContacts
   {
   public:
     // `lumped_masses`: owned, each dof's vertex mass (kg). `couple_pairs`: the whole
@@ -153,30 +153,6 @@ namespace clothsim::physics
            const double      range,
            const bool        within_pieces = false) const;
 
-    // IPC's adaptive barrier stiffness (physics/barrier_stiffness.h): before each
-    // attempt of a step from u_n (ghosted), the closest pair there (report()); at each
-    // iterate Newton accepts, after add_to_step there, the closest pair add_to_step met
-    // (every one within d̂) may raise κ; returns whether it did. Collective.
-    void
-    begin_attempt(const VectorType &u_n);
-    bool
-    adapt_stiffness();
-    const AdaptiveStiffness &
-    barrier_stiffness() const
-    {
-      return stiffness;
-    }
-    std::vector<double>
-    saved_state() const override
-    {
-      return stiffness.saved();
-    }
-    void
-    restore_state(const std::vector<double> &state) override
-    {
-      stiffness.restore(state);
-    }
-
     // Wall time so far (s, this rank) in: gathering positions from all ranks; the broad
     // phase (the near-pair list's checks and rebuilds); the barrier's pairs in
     // add_to_step and energy; the CCD step cap; the statistics' report (each less the
@@ -197,6 +173,11 @@ namespace clothsim::physics
     }
 
   private:
+    // For the adaptive barrier stiffness: the closest pair at u_n within the stiffening
+    // distance (report()).
+    double
+    closest_at_start(const VectorType &u_n, const double t_n) const override;
+
     struct Pair
     {
       PairKind                    kind;
@@ -341,10 +322,7 @@ namespace clothsim::physics
     std::vector<LaggedContact>               lagged;
     double                                   last_dt = 0.;
     WholeSurface                             whole;
-    const ClothSurface                      &cloth;     // whole.surface()
-    AdaptiveStiffness                        stiffness; // κ's scale
-    // The closest pair the last add_to_step met on this rank (m).
-    mutable double assembled_closest = std::numeric_limits<double>::infinity();
+    const ClothSurface                      &cloth; // whole.surface()
     // The gathered displacements (3 per vertex) of an evaluation's vectors.
     mutable std::vector<double> positions, motions, friction_positions;
     mutable Phases              phases;

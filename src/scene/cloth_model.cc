@@ -316,7 +316,7 @@ namespace clothsim
         if (contact != nullptr)
           contact->begin_attempt(start, t_n);
         if (self_contact != nullptr)
-          self_contact->begin_attempt(start);
+          self_contact->begin_attempt(start, t_n);
       }
     if (model->caps_steps())
       {
