@@ -70,7 +70,9 @@ namespace clothsim
       "two parts of the cloth) is nearer than 'Stiffening distance' times "
       "'Thickness' and nearer than at the iterate before, the barrier stiffness of "
       "that contact (obstacles, or self-contact) doubles, up to 'Maximum barrier "
-      "stiffness'. It is never lowered during the run (checkpoints keep it). For "
+      "stiffness'. A step's retry (after a failed Newton solve or a rejected "
+      "step) starts again from the stiffness the last accepted step ended with; "
+      "otherwise it is never lowered (checkpoints keep it). For "
       "impacts whose forces would press a pair towards round-off, where Newton's "
       "step cap stalls (README, Contact with obstacles). Needs the energy line "
       "search (not 'Line search = full step').");
