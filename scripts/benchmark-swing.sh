@@ -56,6 +56,11 @@
 #   --output DIR      where the runs write (DIR/N-<N>/<model>/, with run.log); default a
 #                     temporary directory, removed at the end unless --keep is given
 #   --keep            keep the temporary output directory (its path is printed)
+#   --repeat K        run every N, model and number of ranks K times (default 1), in
+#                     passes that alternate them (N by N), and keep each one's fastest
+#                     run: a virtual machine's speed drifts by 10 to 30 % over minutes,
+#                     which a ratio of two runs taken minutes apart (the speedup) takes
+#                     in whole. A line after the table lists every run's wall time.
 # Example: scripts/benchmark-swing.sh --sizes "21 41" --end-time 0.2
 # Time: at the solver's speed when this was written, N = 81 alone takes about 40 s per
 # 0.5 s of simulated time (fem and mass-spring), and the cost per vertex-step grows with N: the defaults
@@ -71,6 +76,7 @@ params="$repository/params/benchmarks/swing.prm"
 build="$repository/build"
 output=""
 keep=false
+repeat=1
 overrides=()
 
 usage() {
@@ -83,7 +89,7 @@ die() {
 
 while [ $# -gt 0 ]; do
   case "$1" in
-    --sizes | --end-time | --ranks | --models | --params | --set | --build | --output)
+    --sizes | --end-time | --ranks | --models | --params | --set | --build | --output | --repeat)
       [ $# -ge 2 ] || die "$1 expects a value"
       case "$1" in
         --sizes) sizes=$2 ;;
@@ -94,6 +100,7 @@ while [ $# -gt 0 ]; do
         --set) overrides+=(--set "$2") ;;
         --build) build=$2 ;;
         --output) output=$2 ;;
+        --repeat) repeat=$2 ;;
       esac
       shift 2
       ;;
@@ -115,6 +122,7 @@ clothsim="$build/clothsim"
 params=$(cd "$(dirname "$params")" && pwd)/$(basename "$params")
 awk -v t="$end_time" 'BEGIN { exit !(t ~ /^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && t > 0) }' ||
   die "--end-time: '$end_time' is not a positive number"
+[[ "$repeat" =~ ^[1-9][0-9]*$ ]] || die "--repeat: '$repeat' is not a positive number of runs"
 for model in $models; do
   [ "$model" = fem ] || [ "$model" = mass-spring ] ||
     die "--models: unknown model '$model' (fem or mass-spring)"
@@ -153,11 +161,14 @@ else
 fi
 output=$(cd "$output" && pwd)
 
-# One row per run, tab-separated: n model ranks vertices steps halvings wall newton linear
-# later_wall later_newton status, where newton and linear are totals and later_* the wall
-# time and Newton iterations of the accepted steps after the first (which holds one-time
-# work: the direct solver's analysis).
+# One row per N, model and ranks (the fastest of its --repeat runs), tab-separated: n
+# model ranks vertices steps halvings wall newton linear later_wall later_newton status,
+# where newton and linear are totals and later_* the wall time and Newton iterations of
+# the accepted steps after the first (which holds one-time work: the direct solver's
+# analysis). keys: "n model ranks" in the table's order; each one's row and run times.
 rows=()
+keys=()
+declare -A best_row best_wall all_walls
 
 # measure DIR: the row's fields from DIR/run.log and DIR/statistics.csv.
 measure() {
@@ -190,6 +201,10 @@ measure() {
 }
 
 print_table() {
+  rows=()
+  for key in "${keys[@]}"; do
+    [ -n "${best_row[$key]:-}" ] && rows+=("${best_row[$key]}")
+  done
   [ ${#rows[@]} -gt 0 ] || return 0
   printf '%s\n' "${rows[@]}" | awk -F'\t' -v smallest="${sizes%% *}" '
     # value with the given printf format, or "-" where it is not defined.
@@ -276,38 +291,60 @@ fi
 
 echo "benchmark-swing: $(basename "$params"), end time $end_time s, sizes $sizes${overrides[*]+, ${overrides[*]}}" >&2
 for n in $sizes; do
-  for ranks in $ranks_list; do
-    for model in $models; do
-      directory="$output/N-$n/$model"
-      [ "$ranks" -gt 1 ] && directory="$directory-np$ranks"
-      mkdir -p "$directory" || die "cannot create '$directory'"
-      printf 'N = %s, %s, %s rank(s) ... ' "$n" "$model" "$ranks" >&2
-      launcher=()
-      [ "$ranks" -gt 1 ] && launcher=("${mpirun[@]}" -np "$ranks")
-      "${launcher[@]}" "$clothsim" "$params" --set "Mesh/Mesh file=$repository/meshes/swing-$n.msh" \
-        --set "Time/End time=$end_time" --set "Output/Progress=off" "${overrides[@]}" \
-        --set "Model=$model" --output-dir "$directory" >"$directory/run.log" 2>&1
-      code=$?
-      fields=$(measure "$directory")
-      if [ $code -eq 0 ]; then
-        status=ok
-      else
-        reached=$(awk -F, 'NR > 1 { t = $2 } END { print t + 0 }' "$directory/statistics.csv" 2>/dev/null)
-        status="FAILED (exit $code, t = ${reached:-0} s)"
-      fi
-      rows+=("$n"$'\t'"$model"$'\t'"$ranks"$'\t'"$fields"$'\t'"$status")
-      echo "$status, $(cut -f4 <<<"$fields") s" >&2
-      if [ $code -ne 0 ]; then
-        print_table
-        message=$(grep -E '^clothsim: (error|simulation failed|output failed|interrupted)' \
-          "$directory/run.log" | tail -n 1)
-        die "the run N = $n, $model, $ranks rank(s) failed (exit code $code):" \
-          "${message:-no message}; log: $directory/run.log"
-      fi
+  for ((pass = 1; pass <= repeat; ++pass)); do
+    for ranks in $ranks_list; do
+      for model in $models; do
+        directory="$output/N-$n/$model"
+        [ "$ranks" -gt 1 ] && directory="$directory-np$ranks"
+        [ "$repeat" -gt 1 ] && directory="$directory/run$pass"
+        mkdir -p "$directory" || die "cannot create '$directory'"
+        key="$n $model $ranks"
+        [ "$pass" -eq 1 ] && keys+=("$key")
+        printf 'N = %s, %s, %s rank(s)%s ... ' "$n" "$model" "$ranks" \
+          "$([ "$repeat" -gt 1 ] && echo ", run $pass of $repeat")" >&2
+        launcher=()
+        [ "$ranks" -gt 1 ] && launcher=("${mpirun[@]}" -np "$ranks")
+        "${launcher[@]}" "$clothsim" "$params" --set "Mesh/Mesh file=$repository/meshes/swing-$n.msh" \
+          --set "Time/End time=$end_time" --set "Output/Progress=off" "${overrides[@]}" \
+          --set "Model=$model" --output-dir "$directory" >"$directory/run.log" 2>&1
+        code=$?
+        fields=$(measure "$directory")
+        if [ $code -eq 0 ]; then
+          status=ok
+        else
+          reached=$(awk -F, 'NR > 1 { t = $2 } END { print t + 0 }' "$directory/statistics.csv" 2>/dev/null)
+          status="FAILED (exit $code, t = ${reached:-0} s)"
+        fi
+        wall=$(cut -f4 <<<"$fields")
+        all_walls[$key]+="${all_walls[$key]:+ }$wall"
+        if [ -z "${best_row[$key]:-}" ] || [ $code -ne 0 ] ||
+          awk -v a="$wall" -v b="${best_wall[$key]}" 'BEGIN { exit !(a < b) }'; then
+          best_row[$key]="$n"$'\t'"$model"$'\t'"$ranks"$'\t'"$fields"$'\t'"$status"
+          best_wall[$key]=$wall
+        fi
+        echo "$status, $wall s" >&2
+        if [ $code -ne 0 ]; then
+          print_table
+          message=$(grep -E '^clothsim: (error|simulation failed|output failed|interrupted)' \
+            "$directory/run.log" | tail -n 1)
+          die "the run N = $n, $model, $ranks rank(s) failed (exit code $code):" \
+            "${message:-no message}; log: $directory/run.log"
+        fi
+      done
     done
   done
 done
 print_table
+if [ "$repeat" -gt 1 ]; then
+  echo "each row is the fastest of $repeat runs; every run's wall_s (slowest over fastest):"
+  for key in "${keys[@]}"; do
+    read -r n model ranks <<<"$key"
+    awk -v times="${all_walls[$key]}" -v what="N = $n, $model, $ranks rank(s)" 'BEGIN {
+      k = split(times, t, " "); lo = t[1]; hi = t[1]
+      for (i = 2; i <= k; ++i) { if (t[i] < lo) lo = t[i]; if (t[i] > hi) hi = t[i] }
+      printf "  %s: %s (%.2f)\n", what, times, (lo > 0 ? hi / lo : 0) }'
+  done
+fi
 # The libraries, with the BLAS' kernels: the factorisation's speed depends on them.
 echo "libraries: $("$clothsim" --version | tail -n 1)"
 if [ -n "$cpu_before" ]; then
