@@ -15,7 +15,8 @@
 // On several ranks the definite factorisation is SubdomainCholesky's (each rank's rows
 // by its own Cholesky, the interface by a dense Schur complement): the same checks, and
 // a 2D five-point matrix whose interface between the ranks is a whole grid line, solved
-// to round-off in double and refined to 1e-12 in single precision.
+// to round-off in double and refined to 1e-12 in single precision, bit for bit the same
+// with the forward substitution done while factorising.
 
 #include <deal.II/base/mpi.h>
 
@@ -164,6 +165,31 @@ namespace
     x.Norm2(&error);
     exact.Norm2(&norm);
     return error / norm;
+  }
+
+  // Whether factorize(matrix, &b) then solve(b) (the forward substitution done while
+  // factorising) gives, bit for bit, what factorize(matrix) then solve(b) gives, b = T x*
+  // as above; refined against T to `tolerance` if given.
+  bool
+  forwarded_solve_same_bits(MumpsFactorization     &mumps,
+                            const Epetra_CrsMatrix &matrix,
+                            const double            tolerance = -1.)
+  {
+    const Epetra_Map &map = matrix.RowMap();
+    Epetra_Vector     exact(map), rhs(map), plain(map), fused(map);
+    for (int local = 0; local < map.NumMyElements(); ++local)
+      exact[local] = std::sin(map.GID(local) + 1.);
+    matrix.Multiply(false, exact, rhs);
+    const Epetra_CrsMatrix *refine = tolerance > 0. ? &matrix : nullptr;
+    const bool              ok =
+      mumps.factorize(matrix) && mumps.solve(rhs, plain, refine, tolerance) &&
+      mumps.factorize(matrix, &rhs) && mumps.solve(rhs, fused, refine, tolerance);
+    bool same = ok;
+    for (int local = 0; local < map.NumMyElements(); ++local)
+      same = same && plain[local] == fused[local];
+    int all = same ? 1 : 0, everywhere = 0;
+    MPI_Allreduce(&all, &everywhere, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    return everywhere == 1;
   }
 } // namespace
 
@@ -361,6 +387,10 @@ main(int argc, char **argv)
     check(mumps.factorize(matrix), "five-point grid 30 x 40: factorises", rank);
     const double error = solution_error(mumps, matrix);
     check(error < 1e-12, "five-point grid: relative error " + sci(error), rank);
+    check(forwarded_solve_same_bits(mumps, matrix),
+          "five-point grid: the forward substitution done while factorising gives the "
+          "same bits",
+          rank);
     MumpsFactorization single(MPI_COMM_WORLD,
                               MumpsFactorization::Symmetry::positive_definite,
                               5,
@@ -371,6 +401,10 @@ main(int argc, char **argv)
     const double refined = solution_error(single, five_point(grid_map, nx, 1.), 1e-12);
     check(refined < 1e-11,
           "five-point grid, single precision refined: relative error " + sci(refined),
+          rank);
+    check(forwarded_solve_same_bits(single, five_point(grid_map, nx, 1.), 1e-12),
+          "five-point grid, single precision refined: the forward substitution done "
+          "while factorising gives the same bits",
           rank);
     MumpsFactorization negative(MPI_COMM_WORLD,
                                 MumpsFactorization::Symmetry::positive_definite);

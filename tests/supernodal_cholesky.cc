@@ -24,7 +24,8 @@
 //   a tridiagonal Toeplitz matrix (a, b) its Schur complement is a - 2 b² / p_k, p_k the
 //   last pivot of the k x k chain on either side (p_1 = a, p_{j+1} = a - b² / p_j); on
 //   the grid, the complement does not depend on the interior's order, and the solve
-//   through it (its dense Cholesky factor applied by the caller) gives x* to round-off.
+//   through it (its dense Cholesky factor applied by the caller) gives x* to round-off,
+//   bit for bit the same with the forward substitution done while factorising.
 
 #include "solvers/supernodal_cholesky.h"
 
@@ -367,6 +368,19 @@ main(int argc, char **argv)
                       ": relative error of the solve through it",
                     relative_error(x, exact),
                     1e-13);
+        // The forward substitution through the interior done with the factorisation,
+        // then finish_solve() through the Schur block: solve()'s bits.
+        std::vector<double> fused(a.n, 0.);
+        const auto          schur_solve = [&](double *rhs) {
+          dense_solve(m, schurs[reverse], rhs);
+        };
+        const bool factorised = in_double.factorize(a.values.data(), b.data());
+        in_double.finish_solve(fused.data(), schur_solve);
+        check(out,
+              factorised && fused == x,
+              std::string("grid, Schur block, ") +
+                (reverse ? "interior reversed" : "random order") +
+                ": factorize(A, b) and finish_solve() give solve()'s bits");
       }
     double difference = 0., norm = 0.;
     for (int j = 0; j < m; ++j)

@@ -250,7 +250,7 @@ namespace clothsim
     if (subdomains)
       {
         analysed = true;
-        if (subdomains->factorize(matrix))
+        if (subdomains->factorize(matrix, rhs))
           return true;
         last_failure = subdomains->failure();
         return false;

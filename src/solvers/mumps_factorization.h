@@ -68,9 +68,9 @@ namespace clothsim
     // later calls must share. Returns false with failure() set if MUMPS fails (e.g. a
     // zero pivot, or a non-positive one with Symmetry::positive_definite). `rhs`: the
     // right-hand side of the next solve(), if known; where SupernodalCholesky factorises
-    // (one rank, definite) its forward substitution is then done with the factorisation
-    // (SupernodalCholesky::factorize), and the next solve() of that same b (compared
-    // entry by entry) does only the backward one.
+    // (definite; on several ranks through SubdomainCholesky) its forward substitution is
+    // then done with the factorisation (SupernodalCholesky::factorize), and the next
+    // solve() of that same b (compared entry by entry) does only the backward one.
     bool
     factorize(const Epetra_CrsMatrix &matrix, const Epetra_Vector *rhs = nullptr);
 

@@ -11,6 +11,7 @@
 #include <Epetra_Import.h>
 #include <Epetra_IntVector.h>
 
+#include <algorithm>
 #include <numeric>
 
 namespace clothsim
@@ -193,7 +194,7 @@ namespace clothsim
 
 
   bool
-  SubdomainCholesky::factorize(const Epetra_CrsMatrix &matrix)
+  SubdomainCholesky::factorize(const Epetra_CrsMatrix &matrix, const Epetra_Vector *rhs)
   {
     const FlushDenormals flush; // the separator's dense factorisation too
     double              *values = nullptr;
@@ -205,7 +206,15 @@ namespace clothsim
         decoupled_diagonal[i] = values[decoupled_offsets[i]];
         definite              = definite && decoupled_diagonal[i] > 0.;
       }
-    definite = io::on_all_ranks(definite && cholesky.factorize(values), communicator);
+    forwarded_rhs.clear();
+    if (rhs != nullptr)
+      {
+        gather_local(*rhs);
+        forwarded_rhs.assign(rhs->Values(), rhs->Values() + rhs->MyLength());
+      }
+    definite = io::on_all_ranks(
+      definite && cholesky.factorize(values, rhs != nullptr ? local.data() : nullptr),
+      communicator);
     if (definite && n_separator > 0)
       {
         std::fill(schur.begin(), schur.end(), 0.);
@@ -213,6 +222,8 @@ namespace clothsim
         definite = single ? factorize_separator(separator_single, MPI_FLOAT)
                           : factorize_separator(separator, MPI_DOUBLE);
       }
+    if (!definite)
+      forwarded_rhs.clear();
     if (!definite)
       last_failure = "the Cholesky factorisation met a pivot that is not positive (the "
                      "matrix is not positive definite, or too ill-conditioned for the "
@@ -222,11 +233,8 @@ namespace clothsim
 
 
   void
-  SubdomainCholesky::solve(const Epetra_Vector &b, Epetra_Vector &x)
+  SubdomainCholesky::gather_local(const Epetra_Vector &b)
   {
-    const FlushDenormals flush;
-    for (std::size_t i = 0; i < decoupled_rows.size(); ++i)
-      x[decoupled_rows[i]] = b[decoupled_rows[i]] / decoupled_diagonal[i];
     const int n_interior = static_cast<int>(interior_rows.size());
     for (int i = 0; i < n_interior; ++i)
       local[i] = b[interior_rows[i]];
@@ -234,19 +242,48 @@ namespace clothsim
     std::fill(local.begin() + n_interior, local.end(), 0.);
     for (std::size_t i = 0; i < separator_rows.size(); ++i)
       local[n_interior + separator_index[i]] = b[separator_rows[i]];
-    cholesky.solve(local.data(), [&](double *rhs) {
-      sum_on_all_ranks(rhs, n_separator, MPI_DOUBLE, communicator);
-      const auto solve_with = [&](auto &factor, auto *x) {
-        dense::triangular_solve("N", n_separator, factor.data(), n_separator, x);
-        dense::triangular_solve("T", n_separator, factor.data(), n_separator, x);
-      };
-      if (!single)
-        return solve_with(separator.factor, rhs);
-      std::vector<float> &x = separator_single.rhs;
-      std::copy(rhs, rhs + n_separator, x.begin());
-      solve_with(separator_single.factor, x.data());
-      std::copy(x.begin(), x.end(), rhs);
-    });
+  }
+
+
+  void
+  SubdomainCholesky::solve_separator(double *rhs)
+  {
+    sum_on_all_ranks(rhs, n_separator, MPI_DOUBLE, communicator);
+    const auto solve_with = [&](auto &factor, auto *x) {
+      dense::triangular_solve("N", n_separator, factor.data(), n_separator, x);
+      dense::triangular_solve("T", n_separator, factor.data(), n_separator, x);
+    };
+    if (!single)
+      return solve_with(separator.factor, rhs);
+    std::vector<float> &x = separator_single.rhs;
+    std::copy(rhs, rhs + n_separator, x.begin());
+    solve_with(separator_single.factor, x.data());
+    std::copy(x.begin(), x.end(), rhs);
+  }
+
+
+  void
+  SubdomainCholesky::solve(const Epetra_Vector &b, Epetra_Vector &x)
+  {
+    const FlushDenormals flush;
+    for (std::size_t i = 0; i < decoupled_rows.size(); ++i)
+      x[decoupled_rows[i]] = b[decoupled_rows[i]] / decoupled_diagonal[i];
+    // Whether factorize() substituted this b forward already (every rank decides
+    // alike: both paths reduce the separator's right-hand side once).
+    const bool forwarded = io::on_all_ranks(
+      forwarded_rhs.size() == static_cast<std::size_t>(b.MyLength()) &&
+        std::equal(forwarded_rhs.begin(), forwarded_rhs.end(), b.Values()),
+      communicator);
+    forwarded_rhs.clear();
+    const auto separator_solve = [this](double *rhs) { solve_separator(rhs); };
+    if (forwarded)
+      cholesky.finish_solve(local.data(), separator_solve);
+    else
+      {
+        gather_local(b);
+        cholesky.solve(local.data(), separator_solve);
+      }
+    const int n_interior = static_cast<int>(interior_rows.size());
     for (int i = 0; i < n_interior; ++i)
       x[interior_rows[i]] = local[i];
     for (std::size_t i = 0; i < separator_rows.size(); ++i)

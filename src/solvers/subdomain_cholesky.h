@@ -48,11 +48,15 @@ namespace clothsim
       const std::vector<std::array<dealii::types::global_dof_index, 2>> *mesh_vertices);
 
     // Factorises `matrix` (collective; the sparsity analysed), reading its value array in
-    // place. False with failure() set if it is not positive definite.
+    // place. False with failure() set if it is not positive definite. With `rhs`, its
+    // forward substitution through the interior is done while factorising
+    // (SupernodalCholesky::factorize), and the next solve() with the same b only
+    // substitutes backward.
     bool
-    factorize(const Epetra_CrsMatrix &matrix);
+    factorize(const Epetra_CrsMatrix &matrix, const Epetra_Vector *rhs = nullptr);
 
-    // x = A⁻¹ b with the last factors (collective; b and x on the matrix's rows).
+    // x = A⁻¹ b with the last factors (collective; b and x on the matrix's rows). Bit for
+    // bit the same whether factorize() was given b or not.
     void
     solve(const Epetra_Vector &b, Epetra_Vector &x);
 
@@ -86,6 +90,9 @@ namespace clothsim
     std::vector<int>    decoupled_rows, decoupled_offsets; // offsets in the value array
     std::vector<double> decoupled_diagonal;
     int                 n_separator = 0;
+    // The right-hand side given to the last factorize() (its local entries), while its
+    // forward substitution waits for solve().
+    std::vector<double> forwarded_rhs;
     // This rank's term of C (n_separator², column-major), and C's Cholesky factor
     // (lower), its packed sum and a solve's right-hand side, in the factors' precision.
     bool                single;
@@ -99,7 +106,13 @@ namespace clothsim
     Separator<float>  separator_single;
     template <typename Number>
     bool
-                factorize_separator(Separator<Number> &in, MPI_Datatype type);
+    factorize_separator(Separator<Number> &in, MPI_Datatype type);
+    // The interior's and separator's right-hand sides in `local`; x_S = C⁻¹ rhs_S in
+    // place, after summing rhs_S over the ranks.
+    void
+    gather_local(const Epetra_Vector &b);
+    void
+                solve_separator(double *rhs);
     std::string last_failure;
   };
 } // namespace clothsim

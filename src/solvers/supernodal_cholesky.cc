@@ -317,9 +317,6 @@ namespace clothsim
   bool
   SupernodalCholesky::factorize(const double *values, const double *rhs)
   {
-    if (rhs != nullptr && n_schur > 0)
-      throw std::invalid_argument(
-        "SupernodalCholesky::factorize: a right-hand side with a Schur block");
     const FlushDenormals flush;
     forwarded = false;
     const bool ok =
@@ -344,17 +341,21 @@ namespace clothsim
 
 
   void
-  SupernodalCholesky::finish_solve(double *x)
+  SupernodalCholesky::finish_solve(double                              *x,
+                                   const std::function<void(double *)> &schur_solve)
   {
     if (!forwarded)
       throw std::logic_error("SupernodalCholesky::finish_solve: the last factorize() "
                              "had no right-hand side, or its solve was finished");
+    if (n_schur > 0 && !schur_solve)
+      throw std::invalid_argument(
+        "SupernodalCholesky::finish_solve: the Schur block's solve");
     forwarded = false;
     const FlushDenormals flush;
     if (single)
-      solve(in_single, x, {}, true);
+      solve(in_single, x, schur_solve, true);
     else
-      solve(in_double, x, {}, true);
+      solve(in_double, x, schur_solve, true);
   }
 
 

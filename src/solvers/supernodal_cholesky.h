@@ -51,18 +51,19 @@ namespace clothsim
     // Factorises the matrix whose upper-triangle entries are in `values` (where
     // analyse() placed them). Returns false if a pivot is not positive (the matrix is not
     // positive definite, or too ill-conditioned for the factors' precision). With `rhs`
-    // (n entries; not with a Schur block), the forward substitution of rhs is done front
-    // by front as each is factorised, while its panel is still in cache, and
-    // finish_solve() completes x = A⁻¹ rhs with the backward substitution alone: one
-    // pass over the factors less than solve() (Newton's tangent and right-hand side
-    // arrive together).
+    // (n entries), the forward substitution of rhs is done front by front as each is
+    // factorised, while its panel is still in cache, and finish_solve() completes x =
+    // A⁻¹ rhs with the backward substitution alone (after the Schur block's solve, if
+    // there is one): one pass over the factors less than solve() (Newton's tangent and
+    // right-hand side arrive together).
     bool
     factorize(const double *values, const double *rhs = nullptr);
 
-    // After factorize(values, rhs): x = A⁻¹ rhs, bit for bit what solve() on rhs gives.
-    // Once per such factorize(); throws std::logic_error otherwise.
+    // After factorize(values, rhs): x = A⁻¹ rhs, bit for bit what solve(x, schur_solve)
+    // on rhs gives (`schur_solve` as there, needed with a Schur block). Once per such
+    // factorize(); throws std::logic_error otherwise.
     void
-    finish_solve(double *x);
+    finish_solve(double *x, const std::function<void(double *)> &schur_solve = {});
 
     // With a Schur block: adds the last factorisation's Schur complement to `schur`, the
     // lower triangle of an n_schur x n_schur column-major matrix (row and column i are
