@@ -61,6 +61,13 @@
 #                     run: a virtual machine's speed drifts by 10 to 30 % over minutes,
 #                     which a ratio of two runs taken minutes apart (the speedup) takes
 #                     in whole. A line after the table lists every run's wall time.
+#   --cpu C           the CPU every one-rank run is pinned to (taskset; default the
+#                     first this process may run on: 0, where mpirun puts rank 0, on an
+#                     unrestricted machine), or "any" to leave them to the scheduler. A
+#                     virtual machine's CPUs can differ in speed (measured here: one 1.45
+#                     times slower than the other for an hour), and a one-rank run left
+#                     to the scheduler lands on either, so that ratios between sizes or
+#                     models (vs_N0, fem/ms) would compare different CPUs.
 # Example: scripts/benchmark-swing.sh --sizes "21 41" --end-time 0.2
 # Time: at the solver's speed when this was written, N = 81 alone takes about 40 s per
 # 0.5 s of simulated time (fem and mass-spring), and the cost per vertex-step grows with N: the defaults
@@ -77,6 +84,7 @@ build="$repository/build"
 output=""
 keep=false
 repeat=1
+cpu="" # the first CPU this process may run on
 overrides=()
 
 usage() {
@@ -89,7 +97,7 @@ die() {
 
 while [ $# -gt 0 ]; do
   case "$1" in
-    --sizes | --end-time | --ranks | --models | --params | --set | --build | --output | --repeat)
+    --sizes | --end-time | --ranks | --models | --params | --set | --build | --output | --repeat | --cpu)
       [ $# -ge 2 ] || die "$1 expects a value"
       case "$1" in
         --sizes) sizes=$2 ;;
@@ -101,6 +109,7 @@ while [ $# -gt 0 ]; do
         --build) build=$2 ;;
         --output) output=$2 ;;
         --repeat) repeat=$2 ;;
+        --cpu) cpu=$2 ;;
       esac
       shift 2
       ;;
@@ -123,6 +132,16 @@ params=$(cd "$(dirname "$params")" && pwd)/$(basename "$params")
 awk -v t="$end_time" 'BEGIN { exit !(t ~ /^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && t > 0) }' ||
   die "--end-time: '$end_time' is not a positive number"
 [[ "$repeat" =~ ^[1-9][0-9]*$ ]] || die "--repeat: '$repeat' is not a positive number of runs"
+pin=()
+if [ "$cpu" != any ]; then
+  command -v taskset >/dev/null ||
+    die "--cpu: no taskset on the PATH (util-linux) to pin the runs; --cpu any runs them unpinned"
+  allowed=$(taskset -cp $$ | sed 's/.*: //')
+  [ -n "$cpu" ] || cpu=${allowed%%[-,]*}
+  [[ "$cpu" =~ ^[0-9]+$ ]] && taskset -c "$cpu" true 2>/dev/null ||
+    die "--cpu: '$cpu' is not a CPU this process may run on ($allowed), or any"
+  pin=(taskset -c "$cpu")
+fi
 for model in $models; do
   [ "$model" = fem ] || [ "$model" = mass-spring ] ||
     die "--models: unknown model '$model' (fem or mass-spring)"
@@ -302,7 +321,7 @@ for n in $sizes; do
         [ "$pass" -eq 1 ] && keys+=("$key")
         printf 'N = %s, %s, %s rank(s)%s ... ' "$n" "$model" "$ranks" \
           "$([ "$repeat" -gt 1 ] && echo ", run $pass of $repeat")" >&2
-        launcher=()
+        launcher=("${pin[@]}")
         [ "$ranks" -gt 1 ] && launcher=("${mpirun[@]}" -np "$ranks")
         "${launcher[@]}" "$clothsim" "$params" --set "Mesh/Mesh file=$repository/meshes/swing-$n.msh" \
           --set "Time/End time=$end_time" --set "Output/Progress=off" "${overrides[@]}" \
@@ -347,6 +366,11 @@ if [ "$repeat" -gt 1 ]; then
 fi
 # The libraries, with the BLAS' kernels: the factorisation's speed depends on them.
 echo "libraries: $("$clothsim" --version | tail -n 1)"
+if [ "$cpu" = any ]; then
+  echo "one-rank runs: not pinned (--cpu any)"
+else
+  echo "one-rank runs: pinned to CPU $cpu"
+fi
 if [ -n "$cpu_before" ]; then
   printf 'CPU check again ... ' >&2
   cpu_after=$(cpu_times) || die "CPU check failed"

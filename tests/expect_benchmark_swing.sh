@@ -4,10 +4,44 @@
 # after the table, two per model, and each row's cost (us/vtx-step, which shows more
 # digits than wall_s) that of the fastest of its two. A
 # --repeat that is not a positive number is refused.
+# --cpu: through a clothsim that logs its own CPU affinity, every run of the table is
+# pinned to the first CPU it may run on by default (0 here), to the CPU given (the
+# last one), and to none with --cpu any; a CPU the machine does not have is refused.
 # Usage: expect_benchmark_swing.sh SCRIPT BUILD_DIR
 set -euo pipefail
 script=$1
 build=$2
+
+fake=$(mktemp -d "${TMPDIR:-/tmp}/benchmark-swing-test.XXXXXX")
+trap 'rm -rf "$fake"' EXIT
+{
+  echo '#!/bin/sh'
+  echo "case \"\$*\" in *--output-dir*) taskset -cp \$\$ | sed 's/.*: //' >>'$fake/affinity' ;; esac"
+  echo "exec '$(cd "$build" && pwd)/clothsim' \"\$@\""
+} >"$fake/clothsim"
+chmod +x "$fake/clothsim"
+n_cpus=$(nproc --all)
+all_cpus=$(taskset -cp $$ | sed 's/.*: //')
+for cpu in default "$((n_cpus - 1))" any; do
+  rm -f "$fake/affinity"
+  option=()
+  [ "$cpu" = default ] || option=(--cpu "$cpu")
+  footer=$("$script" --build "$fake" --sizes 21 --end-time 0.05 --models fem "${option[@]}" \
+    2>/dev/null | grep '^one-rank runs' || true)
+  expected=$cpu
+  [ "$cpu" = default ] && expected=${all_cpus%%[-,]*}
+  [ "$cpu" = any ] && expected=$all_cpus
+  got=$(sort -u "$fake/affinity" | tr '\n' ' ')
+  echo "--cpu $cpu: the run's affinity ${got}($footer)"
+  [ "$got" = "$expected " ] || { echo "FAIL: expected the affinity $expected"; exit 1; }
+done
+if message=$("$script" --build "$build" --cpu "$n_cpus" 2>&1); then
+  echo "FAIL: --cpu $n_cpus was accepted on $n_cpus CPUs"
+  exit 1
+fi
+grep -q -- "--cpu: '$n_cpus' is not a CPU this process may run on" <<<"$message" ||
+  { echo "FAIL: --cpu $n_cpus refused with: $message"; exit 1; }
+
 if message=$("$script" --build "$build" --repeat 0 2>&1); then
   echo "FAIL: --repeat 0 was accepted"
   exit 1
