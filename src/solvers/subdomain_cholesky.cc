@@ -223,11 +223,12 @@ namespace clothsim
                           : factorize_separator(separator, MPI_DOUBLE);
       }
     if (!definite)
-      forwarded_rhs.clear();
-    if (!definite)
-      last_failure = "the Cholesky factorisation met a pivot that is not positive (the "
-                     "matrix is not positive definite, or too ill-conditioned for the "
-                     "factors' precision)";
+      {
+        forwarded_rhs.clear();
+        last_failure = "the Cholesky factorisation met a pivot that is not positive (the "
+                       "matrix is not positive definite, or too ill-conditioned for the "
+                       "factors' precision)";
+      }
     return definite;
   }
 
