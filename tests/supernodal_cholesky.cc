@@ -7,7 +7,8 @@
 //   cond * 6e-8; three steps of iterative refinement in double to round-off;
 //   double-precision factors to round-off at once. The solution does not depend on the
 //   elimination order (natural, reversed, random).
-// - Refactorisation with new values on the same analysis (2 A: x / 2).
+// - Refactorisation with new values on the same analysis (2 A: x / 2); a second
+//   analysis of the same object, on a larger matrix.
 // - A matrix that is not positive definite: factorize() fails, and the object then
 //   factorises the SPD one again.
 // - Structure: a dense matrix is one supernode of n(n + 1)/2 + ... entries and n³/3
@@ -253,6 +254,29 @@ main(int argc, char **argv)
             in_double.factorize(a.values.data()) &&
             relative_error(solve(in_double, a, b), exact) < 1e-13,
           "double: a negative diagonal entry fails, then A factorises and solves");
+  }
+
+  {
+    // A second analysis on the same object (its numeric arrays are sized by the first
+    // factorisation after each analysis): a small grid factorised, then the large one.
+    std::mt19937        other(7);
+    const Upper         small = grid_matrix(6, 5, other);
+    std::vector<int>    small_order(small.n);
+    std::vector<double> small_exact(small.n, 1.);
+    for (int i = 0; i < small.n; ++i)
+      small_order[i] = i;
+    SupernodalCholesky cholesky;
+    cholesky.analyse(small.n, small.rows, small.columns, small_order);
+    check(out,
+          cholesky.factorize(small.values.data()) &&
+            relative_error(solve(cholesky, small, small.multiply(small_exact), 3),
+                           small_exact) < 1e-12,
+          "re-analysis: the 6 x 5 grid factorises and solves");
+    cholesky.analyse(a.n, a.rows, a.columns, shuffled);
+    check(out,
+          cholesky.factorize(a.values.data()) &&
+            relative_error(solve(cholesky, a, b, 3), exact) < 1e-12,
+          "re-analysis: then the 30 x 20 grid on the same object");
   }
 
   {

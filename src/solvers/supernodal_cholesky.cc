@@ -299,18 +299,26 @@ namespace clothsim
           }
         parent_map_start.push_back(static_cast<int>(parent_map.size()));
       }
-    n_factor_entries    = factor_start.back();
-    const auto allocate = [&](auto &numeric) {
-      numeric.factor.assign(n_factor_entries, 0);
-      numeric.stacks[0].assign(max_stack[0], 0);
-      numeric.stacks[1].assign(max_stack[1], 0);
-      numeric.work.assign(largest, 0);
-      numeric.rhs.assign(n, 0);
-    };
-    if (single)
-      allocate(in_single);
-    else
-      allocate(in_double);
+    n_factor_entries = factor_start.back();
+    largest_front    = largest;
+    // The numeric arrays come with the first factorisation: a candidate analysed only
+    // for its operation count (prefer_vertex_order) never touches their pages.
+    in_single = {};
+    in_double = {};
+  }
+
+
+  template <typename Number>
+  void
+  SupernodalCholesky::allocate(Numeric<Number> &numeric) const
+  {
+    if (numeric.rhs.size() == static_cast<std::size_t>(n))
+      return;
+    numeric.factor.assign(n_factor_entries, 0);
+    numeric.stacks[0].assign(max_stack[0], 0);
+    numeric.stacks[1].assign(max_stack[1], 0);
+    numeric.work.assign(largest_front, 0);
+    numeric.rhs.assign(n, 0);
   }
 
 
@@ -383,6 +391,7 @@ namespace clothsim
                                 const double    *values,
                                 const double    *rhs)
   {
+    allocate(numeric);
     const int n_nodes = n_supernodes();
     if (rhs != nullptr)
       for (int i = 0; i < n; ++i)

@@ -132,6 +132,10 @@ namespace clothsim
       std::vector<Number> work; // solve
       std::vector<Number> rhs;  // solve, permuted
     };
+    // Sizes numeric's arrays for this analysis (once: analyse() empties them).
+    template <typename Number>
+    void
+    allocate(Numeric<Number> &numeric) const;
     template <typename Number>
     bool
     factorize(Numeric<Number> &numeric, const double *values, const double *rhs);
@@ -178,7 +182,8 @@ namespace clothsim
     double            n_operations     = 0.;
     std::int64_t      n_factor_entries = 0;
     std::int64_t      max_stack[2]     = {0, 0};
-    std::vector<char> parity;            // of each supernode's depth in the tree
-    bool              forwarded = false; // finish_solve() may follow
+    std::int64_t      largest_front    = 0; // rows of the largest front
+    std::vector<char> parity;               // of each supernode's depth in the tree
+    bool              forwarded = false;    // finish_solve() may follow
   };
 } // namespace clothsim
