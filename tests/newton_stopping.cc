@@ -109,6 +109,7 @@ namespace
     NonlinearSolverParameters nonlinear;
     LinearSolverParameters    linear;
     nonlinear.parse_parameters(prm);
+    nonlinear.tangent = "adaptive"; // 'automatic' is resolved by Parameters only
     linear.parse_parameters(prm);
 
     const unsigned int n = 10;

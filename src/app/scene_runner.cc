@@ -349,6 +349,17 @@ namespace clothsim
           pcout << "  note: springs carry no rotation; the clamped groups hold their "
                    "vertices' positions only\n";
       }
+    if (!is_explicit(parameters.time.integrator))
+      {
+        const NonlinearSolverParameters &newton = parameters.nonlinear_solver;
+        pcout << "  newton: " << newton.tangent << " tangent";
+        if (newton.truncation_error_fraction > 0. &&
+            !is_static(parameters.time.integrator))
+          pcout << ", stops below " << newton.truncation_error_fraction
+                << " of the step's local truncation estimate ("
+                << newton.truncation_error_norm << " norm)";
+        pcout << ", at most " << newton.max_iterations << " iterations\n";
+      }
     if (parameters.time.accuracy_target > 0.)
       pcout << "  accuracy target " << parameters.time.accuracy_target
             << " m: adaptive steps, each step's local error at most the target x dt / "

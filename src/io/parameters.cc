@@ -112,6 +112,11 @@ namespace clothsim
     linear_solver.parse_parameters(prm);
     output.parse_parameters(prm);
     contact.parse_parameters(prm);
+    // 'automatic' resolved here, where the integrator is known: a dynamic step's mass
+    // term makes the projected tangent positive definite without losing quadratic
+    // convergence in tension; a static step has none.
+    if (nonlinear_solver.tangent == "automatic")
+      nonlinear_solver.tangent = is_static(time.integrator) ? "adaptive" : "projected";
     if (time.integrator == Integrator::linear_static)
       {
         // One linearised step from the reference state with the exact tangent, taken

@@ -250,7 +250,7 @@ namespace clothsim
     double       absolute_tolerance; // N
     double       relative_tolerance;
     std::string  line_search;          // "polynomial", "backtrack", "full step"
-    std::string  tangent;              // "adaptive", "projected", "exact"
+    std::string  tangent;              // "adaptive", "projected", "exact" (resolved)
     bool         mixed_stress_tangent; // membrane stress linearised (physics/membrane.h)
     double       displacement_tolerance;    // m
     double       truncation_error_fraction; // of the step's local error estimate

@@ -387,7 +387,13 @@ namespace clothsim
     , linear_solver(linear, std::move(near_null_space))
     , tangent_matrix(tangent_matrix)
     , timer(timer)
-  {}
+  {
+    // 'automatic' depends on the integrator; Parameters::parse_parameters resolves it.
+    AssertThrow(parameters.tangent == "adaptive" || parameters.tangent == "projected" ||
+                  parameters.tangent == "exact",
+                ExcMessage("Nonlinear solver/Tangent = '" + parameters.tangent +
+                           "' reached the Newton solver unresolved"));
+  }
 
 
   NewtonResult
