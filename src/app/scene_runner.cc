@@ -157,6 +157,31 @@ namespace clothsim
       write_parameter_copy(directory, prm, provenance);
     }
 
+    // After a failed run, or a completed one with the implicit midpoint rule (not
+    // energy-stable on stiff nonlinear motion; Simo & Tarnow 1992): if the energy balance
+    // (total + dissipated) rose by more than the energy the run had to move with (its
+    // initial kinetic and elastic energy and the largest potential energy), the
+    // integrator made that energy, unless a load did the work (wind, moving pins or
+    // obstacles are not in the balance).
+    void
+    print_instability_note(const Parameters   &parameters,
+                           const OutputWriter &output,
+                           ConditionalOStream &pcout)
+    {
+      const double gained = output.energy_balance_change();
+      if (!(gained > output.energy_scale()))
+        return;
+      pcout << "  warning: the energy balance rose by " << gained
+            << " J, more than the run's initial and potential energy ("
+            << output.energy_scale()
+            << " J): unless loads did that work, the time integration was unstable";
+      if (parameters.time.integrator == Integrator::implicit_midpoint)
+        pcout << "; the implicit midpoint rule is not energy-stable on stiff nonlinear "
+                 "motion such as folding cloth (README, \"Time integration\"): 'average "
+                 "vector field' keeps the energy, 'bdf2' damps it";
+      pcout << std::endl;
+    }
+
     // The time loop with its timer, then the run's figures. An output error or an
     // interruption is handed back in `stopped`, for the caller to throw once the timer is
     // gone (its destructor warns when an exception is in flight).
@@ -218,6 +243,8 @@ namespace clothsim
           // What was computed up to the failure: every file written so far is whole.
           if (output && is_root)
             output->print_summary(std::cout);
+          if (output)
+            print_instability_note(parameters, *output, pcout);
         }
       catch (...)
         {
@@ -236,6 +263,8 @@ namespace clothsim
             << summary.retries << std::endl;
       if (is_root)
         output->print_summary(std::cout);
+      if (parameters.time.integrator == Integrator::implicit_midpoint)
+        print_instability_note(parameters, *output, pcout);
       if (parameters.time.adaptive_time_steps)
         {
           pcout << "estimated error at the end: " << summary.estimated_error

@@ -129,6 +129,14 @@ namespace clothsim
     void
     print_summary(std::ostream &out) const;
 
+    // The balance of print_summary(), total + dissipated from the first statistics row
+    // to the last (J; 0 before any row), and the energy the run had to move with: the
+    // first row's K + W plus the largest |P| of any row written (J).
+    double
+    energy_balance_change() const;
+    double
+    energy_scale() const;
+
   private:
     // The restart's part of the constructor (see there).
     void
@@ -153,5 +161,6 @@ namespace clothsim
     double                        last_state_time = 0.;
     std::vector<double>           last_probe_values;
     std::optional<StepStatistics> first_statistics, last_statistics;
+    double                        largest_potential = 0.; // J, of any row
   };
 } // namespace clothsim
