@@ -157,12 +157,11 @@ namespace clothsim
       write_parameter_copy(directory, prm, provenance);
     }
 
-    // After a failed run, or a completed one with the implicit midpoint rule (not
-    // energy-stable on stiff nonlinear motion; Simo & Tarnow 1992): if the energy balance
-    // (total + dissipated) rose by more than the energy the run had to move with (its
-    // initial kinetic and elastic energy and the largest potential energy), the
-    // integrator made that energy, unless a load did the work (wind, moving pins or
-    // obstacles are not in the balance).
+    // After a dynamic run, completed or failed: if the energy balance (total +
+    // dissipated - the work of prescribed motion) rose by more than the energy the run
+    // had to move with (its initial kinetic and elastic energy and the largest potential
+    // energy), the integrator made that energy. The balance leaves out Provot's strain
+    // limit and raises of the barrier stiffness.
     void
     print_instability_note(const Parameters   &parameters,
                            const OutputWriter &output,
@@ -174,7 +173,8 @@ namespace clothsim
       pcout << "  warning: the energy balance rose by " << gained
             << " J, more than the run's initial and potential energy ("
             << output.energy_scale()
-            << " J): unless loads did that work, the time integration was unstable";
+            << " J): the time integration was unstable (unless the strain limit or a "
+               "raised barrier stiffness made it, which the balance leaves out)";
       if (parameters.time.integrator == Integrator::implicit_midpoint)
         pcout << "; the implicit midpoint rule is not energy-stable on stiff nonlinear "
                  "motion such as folding cloth (README, \"Time integration\"): 'average "
@@ -263,7 +263,7 @@ namespace clothsim
             << summary.retries << std::endl;
       if (is_root)
         output->print_summary(std::cout);
-      if (parameters.time.integrator == Integrator::implicit_midpoint)
+      if (!is_static(parameters.time.integrator))
         print_instability_note(parameters, *output, pcout);
       if (parameters.time.adaptive_time_steps)
         {

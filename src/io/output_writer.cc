@@ -254,6 +254,8 @@ namespace clothsim
     for (unsigned int c = 0; c < energy_columns.size(); ++c)
       if (is_dissipated_column(energy_columns[c]))
         change += last.term_energies[c] - first.term_energies[c];
+      else if (energy_columns[c] == "prescribed_work")
+        change -= last.term_energies[c] - first.term_energies[c];
     return change;
   }
 
@@ -293,10 +295,16 @@ namespace clothsim
             << ", elastic " << first.elastic_energy << " -> " << last.elastic_energy
             << ", potential " << first.potential_energy << " -> " << last.potential_energy
             << ", total " << total(first) << " -> " << total(last);
+        bool prescribed = false;
         for (unsigned int c = 0; c < energy_columns.size(); ++c)
-          if (is_dissipated_column(energy_columns[c]))
-            out << "; " << energy_columns[c] << " " << last.term_energies[c];
-        out << "; total + dissipated changed by " << energy_balance_change() << "\n";
+          if (is_dissipated_column(energy_columns[c]) ||
+              energy_columns[c] == "prescribed_work")
+            {
+              out << "; " << energy_columns[c] << " " << last.term_energies[c];
+              prescribed = prescribed || energy_columns[c] == "prescribed_work";
+            }
+        out << "; total + dissipated" << (prescribed ? " - prescribed work" : "")
+            << " changed by " << energy_balance_change() << "\n";
       }
     if (write_vtk)
       {

@@ -123,15 +123,16 @@ namespace clothsim
     }
 
     // The run's closing summary, for its log: each probe's displacement in the last
-    // written state, the energies of the first and last statistics rows and the work
-    // dissipated (columns named *_dissipated), with the balance total + dissipated, and
-    // the path of solution.pvd to open in ParaView.
+    // written state, the energies of the first and last statistics rows, the work
+    // dissipated (columns named *_dissipated) and done by prescribed motion (column
+    // prescribed_work), with the balance total + dissipated - prescribed work, and the
+    // path of solution.pvd to open in ParaView.
     void
     print_summary(std::ostream &out) const;
 
-    // The balance of print_summary(), total + dissipated from the first statistics row
-    // to the last (J; 0 before any row), and the energy the run had to move with: the
-    // first row's K + W plus the largest |P| of any row written (J).
+    // The balance of print_summary(), total + dissipated - prescribed work from the
+    // first statistics row to the last (J; 0 before any row), and the energy the run had
+    // to move with: the first row's K + W plus the largest |P| of any row written (J).
     double
     energy_balance_change() const;
     double

@@ -15,6 +15,7 @@
 #include "io/parameter_errors.h"
 #include "io/parameters_detail.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -132,6 +133,31 @@ namespace clothsim
         nonlinear_solver.displacement_tolerance    = 0.;
         nonlinear_solver.truncation_error_fraction = 0.;
       }
+  }
+
+
+  bool
+  mentions_time(const std::string &expression)
+  {
+    static const std::regex token("(^|[^A-Za-z0-9_])t([^A-Za-z0-9_(]|$)");
+    return std::regex_search(expression, token);
+  }
+
+
+  bool
+  Parameters::prescribes_motion() const
+  {
+    if (!constraints.pinned_groups.empty() &&
+        mentions_time(constraints.pinned_displacement))
+      return true;
+    for (const PrescribedRotation &rotation : constraints.prescribed_rotations)
+      if (mentions_time(rotation.expressions))
+        return true;
+    for (const ObstacleParameters &obstacle : contact.obstacles)
+      if (mentions_time(obstacle.translation) || mentions_time(obstacle.rotation_angle) ||
+          std::isfinite(obstacle.removal_time))
+        return true;
+    return false;
   }
 
 

@@ -376,7 +376,19 @@ namespace clothsim
     declare_parameters(ParameterHandler &prm, const std::string &preset = "none");
     void
     parse_parameters(ParameterHandler &prm);
+
+    // Whether the scene moves something it prescribes: pins or held rotations given as
+    // expressions of t, obstacles with a motion in t or a removal time. The work that
+    // motion does on the cloth joins the energy balance (statistics.csv's
+    // prescribed_work).
+    bool
+    prescribes_motion() const;
   };
+
+  // Whether a FunctionParser expression reads the variable t (a token `t`, not a
+  // function's name such as tan).
+  bool
+  mentions_time(const std::string &expression);
 
   // Every parameter as "Section/Name = default", its allowed values and its documentation
   // (units included), for clothsim --print-parameters; with `json`, one JSON object of

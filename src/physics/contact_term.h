@@ -187,6 +187,18 @@ namespace clothsim::physics
     };
     Report
     report(const VectorType &u, const double time) const;
+
+    // The work the obstacles' prescribed motion from t_n to t_new does on the cloth, J
+    // (collective): each barrier force on the cloth times the obstacle's rigid
+    // displacement P_new(P_n⁻¹(x)) - x at the force's point x, by the trapezoidal rule
+    // over the step's start u_n (the obstacles at t_n) and end u_new (at t_new; both
+    // ghosted); less, for an obstacle that leaves the scene within the step, its
+    // barrier energy at the step's start, which its removal takes away.
+    double
+    motion_work(const VectorType &u_n,
+                const VectorType &u_new,
+                const double      t_n,
+                const double      t_new) const;
     const std::vector<Obstacle> &
     get_obstacles() const
     {

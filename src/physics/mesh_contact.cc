@@ -345,21 +345,23 @@ namespace clothsim::physics
 
 
   void
-  MeshContact::report(const double                 *u_local,
-                      const std::vector<RigidPose> &poses,
-                      double                       &min_distance,
-                      std::vector<Tensor<1, 3>>    &forces,
-                      std::vector<unsigned int>    &contacts) const
+  MeshContact::for_each_pair_barrier(
+    const double                 *u_local,
+    const std::vector<RigidPose> &poses,
+    const std::function<
+      void(const Pair &, const PairPoints &, const double, const PairBarrier *)> &visit)
+    const
   {
     const double d_hat = settings.thickness;
     for_each_pair(u_local, nullptr, poses, d_hat, [&](const Pair &pair) {
       const PairPoints x = pair_points(pair, u_local, poses[pair.obstacle]);
       const double     r = offset(pair.obstacle);
       const double     d = std::sqrt(pair_squared_distance(pair.kind, x)) - r;
-      min_distance       = std::min(min_distance, d);
       if (d >= d_hat)
-        return;
-      ++contacts[pair.obstacle];
+        {
+          visit(pair, x, d, nullptr);
+          return;
+        }
       const PairBarrier b = pair_barrier(pair.kind,
                                          x,
                                          pair.moving,
@@ -370,9 +372,29 @@ namespace clothsim::physics
                                          PairHessian::exact,
                                          false,
                                          r);
-      for (unsigned int i = 0; i < b.n; ++i)
-        forces[pair.obstacle][i % 3] -= b.gradient[i];
+      visit(pair, x, d, &b);
     });
+  }
+
+
+  void
+  MeshContact::report(const double                 *u_local,
+                      const std::vector<RigidPose> &poses,
+                      double                       &min_distance,
+                      std::vector<Tensor<1, 3>>    &forces,
+                      std::vector<unsigned int>    &contacts) const
+  {
+    for_each_pair_barrier(
+      u_local,
+      poses,
+      [&](const Pair &pair, const PairPoints &, const double d, const PairBarrier *b) {
+        min_distance = std::min(min_distance, d);
+        if (b == nullptr)
+          return;
+        ++contacts[pair.obstacle];
+        for (unsigned int i = 0; i < b->n; ++i)
+          forces[pair.obstacle][i % 3] -= b->gradient[i];
+      });
     // Beyond d̂: the distance from the nearest owned cloth vertex to each mesh (the
     // analytic obstacles' vertex distances are ObstacleContact's).
     for (const unsigned int o : mesh_obstacles)
@@ -395,6 +417,35 @@ namespace clothsim::physics
               min_distance = surface.triangle_tree.nearest(lower, exact, min_distance);
             }
       }
+  }
+
+
+  void
+  MeshContact::pair_work(
+    const double                                                      *u_local,
+    const std::vector<RigidPose>                                      &poses,
+    const std::function<Tensor<1, 3>(unsigned int, const Point<3> &)> &displacement,
+    std::vector<double>                                               &work,
+    std::vector<double>                                               &energy) const
+  {
+    for_each_pair_barrier(
+      u_local,
+      poses,
+      [&](const Pair &pair, const PairPoints &x, const double, const PairBarrier *b) {
+        if (b == nullptr)
+          return;
+        energy[pair.obstacle] += b->value;
+        // The gradient has 3 entries per moving point, in order; the force is -∇.
+        unsigned int entry = 0;
+        for (unsigned int k = 0; k < 4; ++k)
+          if (pair.moving[k])
+            {
+              const Tensor<1, 3> delta = displacement(pair.obstacle, x[k]);
+              for (unsigned int c = 0; c < 3; ++c)
+                work[pair.obstacle] -= b->gradient[entry + c] * delta[c];
+              entry += 3;
+            }
+      });
   }
 
 

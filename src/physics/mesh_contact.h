@@ -16,6 +16,7 @@
 #include "mesh/element_matrix_scatter.h"
 #include "physics/cloth_surface.h"
 #include "physics/obstacle.h"
+#include "physics/pair_barrier.h"
 #include "physics/pair_distance.h"
 #include "physics/term.h"
 
@@ -93,6 +94,17 @@ namespace clothsim::physics
            double                       &min_distance,
            std::vector<Tensor<1, 3>>    &forces,
            std::vector<unsigned int>    &contacts) const;
+
+    // Over this rank's pairs within d̂, the obstacles at `poses`: per obstacle, the
+    // barrier's force on each of a pair's cloth points times `displacement(o, x)` at the
+    // point x (added to `work`, J), and the barrier's energy (added to `energy`, J).
+    void
+    pair_work(
+      const double                                                      *u_local,
+      const std::vector<RigidPose>                                      &poses,
+      const std::function<Tensor<1, 3>(unsigned int, const Point<3> &)> &displacement,
+      std::vector<double>                                               &work,
+      std::vector<double>                                               &energy) const;
 
     // A pair at distance 0, a cloth edge through an obstacle's triangle or an obstacle's
     // edge through a cloth triangle at u, described; empty if none on this rank. Only the
@@ -181,6 +193,17 @@ namespace clothsim::physics
                   const double                             margin,
                   const std::function<void(const Pair &)> &visit,
                   const unsigned int only = numbers::invalid_unsigned_int) const;
+
+    // Calls `visit(pair, x, d, b)` for every pair for_each_pair finds near u (margin
+    // d̂), the obstacles at `poses`: its points x, its distance d (m, less the offset)
+    // and, within d̂, its barrier b with the gradient (else null).
+    void
+    for_each_pair_barrier(
+      const double                 *u_local,
+      const std::vector<RigidPose> &poses,
+      const std::function<
+        void(const Pair &, const PairPoints &, const double, const PairBarrier *)> &visit)
+      const;
 
     // Calls `visit` for every pair that may be closer than d̂ at u, the obstacles at
     // `poses`: from a list of the pairs closer than 2 d̂ at an earlier state with the

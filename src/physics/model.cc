@@ -365,6 +365,20 @@ namespace clothsim::physics
 
 
   void
+  Model::step_forces(const VectorType &u, const StepTerms &step, VectorType &forces) const
+  {
+    std::vector<TermKind> kinds = {TermKind::elastic,
+                                   TermKind::potential,
+                                   TermKind::constraint};
+    if (step.inertia_weight > 0.)
+      kinds.push_back(TermKind::kinetic);
+    if (step.damping_weight > 0.)
+      kinds.push_back(TermKind::dissipative);
+    add_forces(u, step, kinds, forces);
+  }
+
+
+  void
   Model::add_forces(const VectorType            &u,
                     const StepTerms             &step,
                     const std::vector<TermKind> &kinds,
@@ -378,7 +392,7 @@ namespace clothsim::physics
     std::vector<types::global_dof_index> dofs;
     std::vector<double>                  values;
     const auto                          &elements = discretization.elements();
-    for_each_element(u, nullptr, nullptr, [&](const ElementState &state) {
+    for_each_element(u, step.predictor, step.previous, [&](const ElementState &state) {
       g.fill(0.);
       for (const auto &term : element_terms)
         if (wanted(term->kind()))

@@ -108,6 +108,12 @@ namespace clothsim::physics
     void
     static_forces(const VectorType &u, const StepTerms &step, VectorType &forces) const;
 
+    // The gradient of the step's Φ at u (ghosted) with every term, constrained dofs
+    // included (`forces` owned): at a pinned dof, the force the pin must exert on the
+    // cloth for the step's equations to hold there.
+    void
+    step_forces(const VectorType &u, const StepTerms &step, VectorType &forces) const;
+
     // Energies at displacement u and velocity v (ghosted). If non-null,
     // `damping_force` gets the state's damping force D(u) v from the same loops (the
     // dissipative terms' gradient with w_d = 1 and u_n = u - v, K_n as last prepared;

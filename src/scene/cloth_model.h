@@ -277,6 +277,26 @@ namespace clothsim
     {
       return model->has_dissipation();
     }
+    bool
+    has_prescribed_motion() const override
+    {
+      return parameters.prescribes_motion();
+    }
+    void
+    step_forces(const VectorType &u,
+                const StepTerms  &step,
+                VectorType       &forces) const override
+    {
+      model->step_forces(u, step, forces);
+    }
+    double
+    obstacle_work(const VectorType &u_n,
+                  const VectorType &u_new,
+                  const double      t_n,
+                  const double      t_new) const override
+    {
+      return contact != nullptr ? contact->motion_work(u_n, u_new, t_n, t_new) : 0.;
+    }
     std::pair<double, double>
     area_ratio_range(const VectorType &u) const override
     {

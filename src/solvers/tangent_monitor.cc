@@ -1,5 +1,6 @@
 #include "solvers/tangent_monitor.h"
 
+#include <NOX_Abstract_Group.H>
 #include <NOX_Solver_LineSearchBased.H>
 
 #include <string>

@@ -337,6 +337,7 @@ namespace clothsim
           }
 
         // commit: the directors are re-based on the new state (angles back to zero).
+        add_static_prescribed_work(u_new, u_n, lambda_n, lambda_new);
         last_increment = u_new;
         last_increment -= u_n;
         last_load_increment = lambda_new - lambda_n;

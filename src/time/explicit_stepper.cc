@@ -181,6 +181,28 @@ namespace clothsim
   }
 
 
+  void
+  ExplicitStepper::add_step_prescribed_work(const VectorType &u,
+                                            const VectorType &u_old,
+                                            const VectorType &v_old,
+                                            const double      t_n,
+                                            const double      t_new)
+  {
+    const double h = t_new - t_n;
+    centre         = u_old;
+    centre.add(h, v_old); // the predictor
+    model.import_ghosts(centre, work_ghosted);
+    model.import_ghosts(u_old, centre_ghosted);
+    StepTerms terms;
+    terms.inertia_weight = 1. / (h * h);
+    terms.damping_weight = 1. / h;
+    terms.predictor      = &work_ghosted;
+    terms.previous       = &centre_ghosted;
+    terms.time           = t_new;
+    add_prescribed_work(u, terms, u, u_old, t_n, t_new, /*trapezoid=*/true);
+  }
+
+
   RunSummary
   ExplicitStepper::run()
   {
@@ -190,8 +212,8 @@ namespace clothsim
     const double interval = parameters.output.interval;
     const double epsilon  = 1e-9 * dt;
 
-    VectorType u, v, a, u_old;
-    for (VectorType *vector : {&u, &v, &a, &u_old})
+    VectorType u, v, a, u_old, v_old;
+    for (VectorType *vector : {&u, &v, &a, &u_old, &v_old})
       model.initialize_owned(*vector);
     model.initial_state(u, v);
     model.import_ghosts(u, work_ghosted);
@@ -238,6 +260,7 @@ namespace clothsim
         const double time_new = std::min({time + dt, next_output, end});
         const double h        = time_new - time;
         u_old                 = u;
+        v_old                 = v;
         // The energy budget needs the damping force at the step's start, D(u_n) v_n:
         // symplectic Euler's force evaluation gives it; Verlet's last one saw v_{n-1/2},
         // so there the energies of (u_n, v_n) gave it (below; at the start, the first
@@ -263,6 +286,8 @@ namespace clothsim
         // step's displacement (exact for symplectic Euler, first order for Verlet).
         if (dissipation)
           add_dissipation(damping_force, u, u_old);
+        if (model.has_prescribed_motion())
+          add_step_prescribed_work(u, u_old, v_old, time, time_new);
         if (verlet)
           {
             acceleration(u, v, a);

@@ -95,6 +95,16 @@ namespace clothsim
     StepTerms
     damping_terms(const VectorType &u, const VectorType &v);
 
+    // The work of the prescribed motion over the step from (u_old, v_old) at t_n to u
+    // at t_new (owned): the pins' forces as backward Euler's equations need them at u
+    // (inertia m (u - u_old - h v_old)/h², damping centred at u_old).
+    void
+    add_step_prescribed_work(const VectorType &u,
+                             const VectorType &u_old,
+                             const VectorType &v_old,
+                             const double      t_n,
+                             const double      t_new);
+
     VectorType inverse_mass;   // owned, 0 on pinned dofs
     VectorType gradient;       // owned
     VectorType centre;         // owned: u - v, the damping term's centre

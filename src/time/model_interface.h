@@ -166,6 +166,22 @@ namespace clothsim
                     const VectorType &increment) const = 0;
     virtual bool
     has_dissipation() const = 0;
+    // Whether the scene moves something it prescribes (Parameters::prescribes_motion());
+    // then the steppers sum the work that motion does on the cloth (StepperCore::
+    // add_prescribed_work), reported in the last of energy_columns(), "prescribed_work".
+    virtual bool
+    has_prescribed_motion() const = 0;
+    // The gradient of the Φ of `step` at u (ghosted) with every term, constrained dofs
+    // included (`forces` owned): at a pinned dof, the force the pin exerts on the cloth.
+    virtual void
+    step_forces(const VectorType &u, const StepTerms &step, VectorType &forces) const = 0;
+    // The work done on the cloth by the obstacles' prescribed motion from t_n to t_new,
+    // the cloth at u_n and u_new (ghosted), J (collective; physics/contact_term.h).
+    virtual double
+    obstacle_work(const VectorType &u_n,
+                  const VectorType &u_new,
+                  const double      t_n,
+                  const double      t_new) const = 0;
 
     // Smallest and largest current/reference triangle area ratio at u (ghosted); NaN
     // gives (-1, infinity).

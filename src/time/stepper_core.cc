@@ -46,6 +46,7 @@ namespace clothsim
     model.import_ghosts(u, u_ghosted);
     model.import_ghosts(v, v_ghosted);
     dissipated = 0.;
+    prescribed = 0.;
     write_frame(0, 0.);
     const EnergyReport energies = current_energies();
     output.write_statistics({0,
@@ -136,6 +137,83 @@ namespace clothsim
 
 
   void
+  StepperCore::add_prescribed_work(const VectorType &solved,
+                                   const StepTerms  &terms,
+                                   const VectorType &u_new,
+                                   const VectorType &u_old,
+                                   const double      t_n,
+                                   const double      t_new,
+                                   const bool        trapezoid)
+  {
+    if (!model.has_prescribed_motion())
+      return;
+    TimerOutput::Scope scope(timer, "energy budget");
+    if (start_ghosted.size() == 0)
+      {
+        model.initialize_ghosted(start_ghosted);
+        model.initialize_ghosted(end_ghosted);
+        model.initialize_owned(step_forces);
+        if (solved_ghosted.size() == 0)
+          model.initialize_ghosted(solved_ghosted);
+      }
+    // The pins: Σ_i F_i (u_new,i - u_old,i) over the constrained dofs that moved.
+    const IndexSet                      &owned = model.owned_dofs();
+    const MPI_Comm                       comm  = model.get_communicator();
+    std::vector<types::global_dof_index> moved;
+    for (const auto &line : model.get_constraints().get_lines())
+      if (owned.is_element(line.index) && u_new[line.index] != u_old[line.index])
+        moved.push_back(line.index);
+    double work = 0.;
+    if (Utilities::MPI::max(moved.size(), comm) > 0)
+      {
+        model.import_ghosts(solved, solved_ghosted);
+        model.step_forces(solved_ghosted, terms, step_forces);
+        const bool average = trapezoid && previous_forces.size() > 0;
+        double     local   = 0.;
+        for (const types::global_dof_index i : moved)
+          local +=
+            (average ? 0.5 * (previous_forces[i] + step_forces[i]) : step_forces[i]) *
+            (u_new[i] - u_old[i]);
+        work = Utilities::MPI::sum(local, comm);
+        if (trapezoid)
+          previous_forces = step_forces;
+      }
+    else
+      previous_forces = VectorType(); // stale by the next move: that step starts afresh
+    model.import_ghosts(u_old, start_ghosted);
+    model.import_ghosts(u_new, end_ghosted);
+    prescribed += work + model.obstacle_work(start_ghosted, end_ghosted, t_n, t_new);
+  }
+
+
+  void
+  StepperCore::add_static_prescribed_work(const VectorType &u_new,
+                                          const VectorType &u_old,
+                                          const double      lambda_old,
+                                          const double      lambda_new)
+  {
+    if (!model.has_prescribed_motion())
+      return;
+    // The static forces at the step's two equilibria, the reactions; at the first step
+    // the start's, which a static state has without a solve.
+    StepTerms terms;
+    if (previous_forces.size() == 0)
+      {
+        TimerOutput::Scope scope(timer, "energy budget");
+        terms.load_factor = terms.time = lambda_old;
+        VectorType start;
+        model.initialize_ghosted(start);
+        model.import_ghosts(u_old, start);
+        model.initialize_owned(previous_forces);
+        model.step_forces(start, terms, previous_forces);
+      }
+    terms.load_factor = terms.time = lambda_new;
+    add_prescribed_work(
+      u_new, terms, u_new, u_old, lambda_old, lambda_new, /*trapezoid=*/true);
+  }
+
+
+  void
   StepperCore::record(const unsigned int  step,
                       const double        time,
                       const double        dt,
@@ -183,6 +261,7 @@ namespace clothsim
   StepperCore::save_core(io::CheckpointData &run) const
   {
     run.set("core dissipated", dissipated);
+    run.set("core prescribed work", prescribed);
     run.set("core frame step", frame_step);
     run.set("core any frame", any_frame ? 1. : 0.);
     run.set("core wall seconds", wall_offset + wall_clock.wall_time());
@@ -192,7 +271,10 @@ namespace clothsim
   void
   StepperCore::restore_core(const io::CheckpointData &run)
   {
-    dissipated  = run.get_number("core dissipated");
+    dissipated = run.get_number("core dissipated");
+    // Checkpoints before the prescribed work was counted have none.
+    prescribed =
+      run.has("core prescribed work") ? run.get_number("core prescribed work") : 0.;
     frame_step  = static_cast<unsigned int>(run.get_number("core frame step"));
     any_frame   = run.get_number("core any frame") != 0.;
     wall_offset = run.get_number("core wall seconds");

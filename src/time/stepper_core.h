@@ -122,27 +122,57 @@ namespace clothsim
                     const VectorType          &u_new,
                     const VectorType          &u_old);
 
-    // The energies at (u_ghosted, v_ghosted), with the dissipation so far.
+    // Adds the work the scene's prescribed motion did on the cloth over a step from u_old
+    // at t_n to u_new at t_new (owned vectors), if the scene prescribes motion: at the
+    // constrained dofs that moved, the step's force there (ModelInterface::step_forces of
+    // the step `terms` at `solved`, owned) times their change; with `trapezoid`, the
+    // mean of that force and the one of the step before (the steps that solve for their
+    // end state: the work's trapezoidal rule, second order); plus the moving obstacles'
+    // work (ModelInterface::obstacle_work).
+    void
+    add_prescribed_work(const VectorType &solved,
+                        const StepTerms  &terms,
+                        const VectorType &u_new,
+                        const VectorType &u_old,
+                        const double      t_n,
+                        const double      t_new,
+                        const bool        trapezoid);
+
+    // The same for a static step from load factor λ_old to λ_new: the trapezoidal rule
+    // over the reactions of its two equilibria (exact where they are linear in the
+    // prescribed values).
+    void
+    add_static_prescribed_work(const VectorType &u_new,
+                               const VectorType &u_old,
+                               const double      lambda_old,
+                               const double      lambda_new);
+
+    // The energies at (u_ghosted, v_ghosted), with the dissipation and prescribed work
+    // so far.
     EnergyReport
     current_energies() const
     {
-      return linearised(model.energies(u_ghosted, v_ghosted, dissipated));
+      return reported(model.energies(u_ghosted, v_ghosted, dissipated));
     }
     // The same and the state's damping force (ModelInterface::energies).
     EnergyReport
     current_energies(physics::RankVector &damping_force) const
     {
-      return linearised(model.energies(u_ghosted, v_ghosted, dissipated, damping_force));
+      return reported(model.energies(u_ghosted, v_ghosted, dissipated, damping_force));
     }
     // A linear static solution's elastic energy ½ uᵀK0u = ½ f·u (Clapeyron's theorem,
     // with zero prescribed displacements) and the loads' potential -f·u, J, in place of
     // the nonlinear model's (the terms' own columns stay the model's).
     std::optional<std::pair<double, double>> linear_energies;
+    // The model's report with the linear energies and the prescribed work (its last
+    // column) set.
     EnergyReport
-    linearised(EnergyReport report) const
+    reported(EnergyReport report) const
     {
       if (linear_energies)
         std::tie(report.elastic, report.potential) = *linear_energies;
+      if (model.has_prescribed_motion())
+        report.columns.back() = prescribed;
       return report;
     }
 
@@ -196,14 +226,21 @@ namespace clothsim
 
     VectorType u_ghosted, v_ghosted; // the current state
     double     dissipated = 0.;      // J, work done against damping so far
+    double     prescribed = 0.;      // J, work done on the cloth by prescribed motion
+    // Owned: the step forces of the last step added with `trapezoid` (empty before
+    // it), for the next one's trapezoidal rule (add_prescribed_work); checkpointed by
+    // the steppers.
+    VectorType previous_forces;
 
   private:
     // increment = u_new - u_old, ghosted (the work vectors made on first use).
     void
     set_increment(const VectorType &u_new, const VectorType &u_old);
 
-    VectorType   increment, solved_ghosted; // ghosted work vectors of add_dissipation
-    unsigned int frame_step = 0;            // the step of the last written frame
+    VectorType   increment, solved_ghosted;  // ghosted work vectors of add_dissipation
+    VectorType   start_ghosted, end_ghosted; // ... and of add_prescribed_work
+    VectorType   step_forces;                // owned: its forces of the step
+    unsigned int frame_step = 0;             // the step of the last written frame
     bool         any_frame  = false;
   };
 } // namespace clothsim

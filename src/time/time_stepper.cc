@@ -216,8 +216,9 @@ namespace clothsim
           return attempt;
       }
 
-    // The work against damping is taken at the solved iterate (the midpoint's x).
-    if (dynamic && model.has_dissipation())
+    // The work against damping and by prescribed motion is taken at the solved iterate
+    // (the midpoint's x).
+    if (dynamic && (model.has_dissipation() || model.has_prescribed_motion()))
       solved = u_new;
     if (dynamic)
       {
@@ -256,6 +257,21 @@ namespace clothsim
   void
   TimeStepper::commit_step(const unsigned int step, const double dt)
   {
+    // The work of prescribed motion: the steps that solve for their end state take the
+    // trapezoidal rule over their end forces, the midpoint rules their midpoint's.
+    if (dynamic)
+      add_prescribed_work(solved,
+                          last_terms,
+                          u_new,
+                          u_n,
+                          last_terms.time - dt,
+                          last_terms.time,
+                          !solves_for_midpoint(parameters.time.integrator));
+    else
+      add_static_prescribed_work(u_new,
+                                 u_n,
+                                 last_terms.load_factor - dt,
+                                 last_terms.load_factor);
     if (dynamic)
       {
         add_dissipation(solved, last_terms, u_new, u_n);

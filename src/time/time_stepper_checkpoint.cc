@@ -67,6 +67,8 @@ namespace clothsim
     rank.set("u_nm1", owned_values(u_nm1));
     rank.set("v_nm1", owned_values(v_nm1));
     rank.set("last_increment", owned_values(last_increment));
+    if (previous_forces.size() > 0)
+      rank.set("prescribed_forces", owned_values(previous_forces));
     model.save_state(rank);
 
     run.set("step previous", previous_step);
@@ -113,6 +115,11 @@ namespace clothsim
     set_owned_values(rank, "u_nm1", u_nm1);
     set_owned_values(rank, "v_nm1", v_nm1);
     set_owned_values(rank, "last_increment", last_increment);
+    if (rank.has("prescribed_forces"))
+      {
+        model.initialize_owned(previous_forces);
+        set_owned_values(rank, "prescribed_forces", previous_forces);
+      }
     model.restore_state(rank);
 
     previous_step                = run.get_number("step previous");
