@@ -158,10 +158,10 @@ namespace clothsim
     }
 
     // After a dynamic run, completed or failed: if the energy balance (total +
-    // dissipated - the work of prescribed motion) rose by more than the energy the run
-    // had to move with (its initial kinetic and elastic energy and the largest potential
-    // energy), the integrator made that energy. The balance leaves out Provot's strain
-    // limit and raises of the barrier stiffness.
+    // dissipated - the work of prescribed motion - the strain limit's energy) rose by
+    // more than the energy the run had to move with (its initial kinetic and elastic
+    // energy and the largest potential energy), the integrator made that energy. The
+    // balance leaves out raises of the barrier stiffness.
     void
     print_instability_note(const Parameters   &parameters,
                            const OutputWriter &output,
@@ -173,8 +173,8 @@ namespace clothsim
       pcout << "  warning: the energy balance rose by " << gained
             << " J, more than the run's initial and potential energy ("
             << output.energy_scale()
-            << " J): the time integration was unstable (unless the strain limit or a "
-               "raised barrier stiffness made it, which the balance leaves out)";
+            << " J): the time integration was unstable (unless raises of the barrier "
+               "stiffness, which the balance leaves out, made it)";
       if (parameters.time.integrator == Integrator::implicit_midpoint)
         pcout << "; the implicit midpoint rule is not energy-stable on stiff nonlinear "
                  "motion such as folding cloth (README, \"Time integration\"): 'average "

@@ -239,6 +239,14 @@ namespace clothsim
       return name.size() > suffix.size() &&
              name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
     }
+
+    // Energy given to the cloth from outside its equations: the work of prescribed
+    // motion, the strain limit's corrections.
+    bool
+    is_added_column(const std::string &name)
+    {
+      return name == "prescribed_work" || name == "strain_limit_energy";
+    }
   } // namespace
 
 
@@ -254,7 +262,7 @@ namespace clothsim
     for (unsigned int c = 0; c < energy_columns.size(); ++c)
       if (is_dissipated_column(energy_columns[c]))
         change += last.term_energies[c] - first.term_energies[c];
-      else if (energy_columns[c] == "prescribed_work")
+      else if (is_added_column(energy_columns[c]))
         change -= last.term_energies[c] - first.term_energies[c];
     return change;
   }
@@ -295,16 +303,17 @@ namespace clothsim
             << ", elastic " << first.elastic_energy << " -> " << last.elastic_energy
             << ", potential " << first.potential_energy << " -> " << last.potential_energy
             << ", total " << total(first) << " -> " << total(last);
-        bool prescribed = false;
+        std::string added;
         for (unsigned int c = 0; c < energy_columns.size(); ++c)
           if (is_dissipated_column(energy_columns[c]) ||
-              energy_columns[c] == "prescribed_work")
+              is_added_column(energy_columns[c]))
             {
               out << "; " << energy_columns[c] << " " << last.term_energies[c];
-              prescribed = prescribed || energy_columns[c] == "prescribed_work";
+              if (is_added_column(energy_columns[c]))
+                added += " - " + energy_columns[c];
             }
-        out << "; total + dissipated" << (prescribed ? " - prescribed work" : "")
-            << " changed by " << energy_balance_change() << "\n";
+        out << "; total + dissipated" << added << " changed by "
+            << energy_balance_change() << "\n";
       }
     if (write_vtk)
       {

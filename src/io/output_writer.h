@@ -124,14 +124,14 @@ namespace clothsim
 
     // The run's closing summary, for its log: each probe's displacement in the last
     // written state, the energies of the first and last statistics rows, the work
-    // dissipated (columns named *_dissipated) and done by prescribed motion (column
-    // prescribed_work), with the balance total + dissipated - prescribed work, and the
-    // path of solution.pvd to open in ParaView.
+    // dissipated (columns named *_dissipated), the energy given from outside (columns
+    // prescribed_work, strain_limit_energy), with the balance total + dissipated - given,
+    // and the path of solution.pvd to open in ParaView.
     void
     print_summary(std::ostream &out) const;
 
-    // The balance of print_summary(), total + dissipated - prescribed work from the
-    // first statistics row to the last (J; 0 before any row), and the energy the run had
+    // The balance of print_summary(), total + dissipated - given from the first
+    // statistics row to the last (J; 0 before any row), and the energy the run had
     // to move with: the first row's K + W plus the largest |P| of any row written (J).
     double
     energy_balance_change() const;

@@ -309,6 +309,12 @@ namespace clothsim
     }
     std::pair<types::global_dof_index, double>
     limit_strain(VectorType &u, VectorType &v, const double dt) const override;
+    double
+    mechanical_energy(const VectorType &u, const VectorType &v) const override
+    {
+      const physics::Energies energies = model->energies(u, v);
+      return energies.kinetic + energies.elastic + energies.potential;
+    }
     std::vector<std::string>
     term_names() const override;
     std::vector<std::string>

@@ -51,11 +51,14 @@ namespace clothsim
         columns.push_back(column);
     if (parameters.output.check_intersections)
       columns.push_back("intersecting_pairs");
-    // The work done on the cloth by the prescribed motion so far (J), filled in by the
-    // steppers (StepperCore::reported); last, so that the model's columns keep their
-    // places.
+    // The work done on the cloth by the prescribed motion so far (J), and the energy
+    // the strain limit added, filled in by the steppers (StepperCore::reported); last,
+    // so that the model's columns keep their places.
     if (has_prescribed_motion())
       columns.push_back("prescribed_work");
+    // The energy Provot's strain limit has added by its corrections so far (J).
+    if (has_strain_limit())
+      columns.push_back("strain_limit_energy");
     return columns;
   }
 
@@ -82,15 +85,16 @@ namespace clothsim
   EnergyReport
   ClothModel::add_step_report(const VectorType &u, EnergyReport energies) const
   {
-    // The contact, drape and intersection columns are the last ones but the prescribed
-    // work (energy_columns()).
+    // The contact, drape and intersection columns are the last ones but the steppers'
+    // (energy_columns()).
     const double       drape_radius = parameters.output.drape_disc_radius;
     const bool         intersecting = parameters.output.check_intersections;
     const unsigned int adaptive     = adapts_stiffness() ? 1 : 0;
     const double       a_b          = parameters.contact.barrier_acceleration;
-    std::size_t        column =
-      energies.columns.size() - (drape_radius > 0. ? 2 : 0) - (intersecting ? 1 : 0) -
-      (self_contact != nullptr ? 2 + adaptive : 0) - (has_prescribed_motion() ? 1 : 0);
+    std::size_t        column = energies.columns.size() - (drape_radius > 0. ? 2 : 0) -
+                         (intersecting ? 1 : 0) -
+                         (self_contact != nullptr ? 2 + adaptive : 0) -
+                         (has_prescribed_motion() ? 1 : 0) - (has_strain_limit() ? 1 : 0);
     if (contact != nullptr)
       {
         const physics::ObstacleContact::Report contacts =

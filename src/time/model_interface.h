@@ -194,6 +194,9 @@ namespace clothsim
     has_strain_limit() const = 0;
     virtual std::pair<types::global_dof_index, double>
     limit_strain(VectorType &u, VectorType &v, const double dt) const = 0;
+    // K + W + P at (u, v), ghosted, J (collective): the energy report's total alone.
+    virtual double
+    mechanical_energy(const VectorType &u, const VectorType &v) const = 0;
 
     // The names of the model's terms, and the statistics.csv columns that report them
     // beyond kinetic, elastic, potential and total energy.

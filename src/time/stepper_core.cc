@@ -45,8 +45,9 @@ namespace clothsim
     wall_clock.restart();
     model.import_ghosts(u, u_ghosted);
     model.import_ghosts(v, v_ghosted);
-    dissipated = 0.;
-    prescribed = 0.;
+    dissipated     = 0.;
+    prescribed     = 0.;
+    strain_limited = 0.;
     write_frame(0, 0.);
     const EnergyReport energies = current_energies();
     output.write_statistics({0,
@@ -87,7 +88,14 @@ namespace clothsim
     if (!model.has_strain_limit())
       return;
     TimerOutput::Scope scope(timer, "strain limit");
+    const auto         energy = [this, &u, &v]() {
+      model.import_ghosts(u, u_ghosted);
+      model.import_ghosts(v, v_ghosted);
+      return model.mechanical_energy(u_ghosted, v_ghosted);
+    };
+    const double before             = energy();
     const auto [remaining, largest] = model.limit_strain(u, v, dt);
+    strain_limited += energy() - before;
     if (remaining > 0)
       pcout << "step " << step << ": " << remaining
             << " springs still beyond the strain limit (largest strain " << largest
@@ -262,6 +270,7 @@ namespace clothsim
   {
     run.set("core dissipated", dissipated);
     run.set("core prescribed work", prescribed);
+    run.set("core strain limit energy", strain_limited);
     run.set("core frame step", frame_step);
     run.set("core any frame", any_frame ? 1. : 0.);
     run.set("core wall seconds", wall_offset + wall_clock.wall_time());
@@ -272,9 +281,11 @@ namespace clothsim
   StepperCore::restore_core(const io::CheckpointData &run)
   {
     dissipated = run.get_number("core dissipated");
-    // Checkpoints before the prescribed work was counted have none.
-    prescribed =
-      run.has("core prescribed work") ? run.get_number("core prescribed work") : 0.;
+    // Checkpoints before these were counted have none.
+    for (const auto &[name, value] :
+         {std::make_pair("core prescribed work", &prescribed),
+          std::make_pair("core strain limit energy", &strain_limited)})
+      *value = run.has(name) ? run.get_number(name) : 0.;
     frame_step  = static_cast<unsigned int>(run.get_number("core frame step"));
     any_frame   = run.get_number("core any frame") != 0.;
     wall_offset = run.get_number("core wall seconds");

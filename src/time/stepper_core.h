@@ -101,7 +101,8 @@ namespace clothsim
     blow_up(const VectorType &u) const;
 
     // Provot's strain limit after a dynamic step of size dt (u, v owned), if the model
-    // has one; says so when springs stay beyond it.
+    // has one; says so when springs stay beyond it. Adds the energy its corrections
+    // change (K + W + P after less before) to `strain_limited`.
     void
     limit_strain(const unsigned int step, VectorType &u, VectorType &v, const double dt);
 
@@ -164,15 +165,18 @@ namespace clothsim
     // with zero prescribed displacements) and the loads' potential -f·u, J, in place of
     // the nonlinear model's (the terms' own columns stay the model's).
     std::optional<std::pair<double, double>> linear_energies;
-    // The model's report with the linear energies and the prescribed work (its last
-    // column) set.
+    // The model's report with the linear energies, the prescribed work and the strain
+    // limit's energy (its last columns) set.
     EnergyReport
     reported(EnergyReport report) const
     {
       if (linear_energies)
         std::tie(report.elastic, report.potential) = *linear_energies;
+      std::size_t column = report.columns.size();
+      if (model.has_strain_limit())
+        report.columns[--column] = strain_limited;
       if (model.has_prescribed_motion())
-        report.columns.back() = prescribed;
+        report.columns[--column] = prescribed;
       return report;
     }
 
@@ -225,8 +229,9 @@ namespace clothsim
     double              wall_offset = 0.; // s: the wall time before a restart
 
     VectorType u_ghosted, v_ghosted; // the current state
-    double     dissipated = 0.;      // J, work done against damping so far
-    double     prescribed = 0.;      // J, work done on the cloth by prescribed motion
+    double     dissipated     = 0.;  // J, work done against damping so far
+    double     prescribed     = 0.;  // J, work done on the cloth by prescribed motion
+    double     strain_limited = 0.;  // J, energy added by the strain limit's corrections
     // Owned: the step forces of the last step added with `trapezoid` (empty before
     // it), for the next one's trapezoidal rule (add_prescribed_work); checkpointed by
     // the steppers.

@@ -1,6 +1,8 @@
-// The work of prescribed motion in the energy balance (statistics.csv's prescribed_work;
-// time/stepper_core.h, physics/contact_work.cc). Balance: total + dissipated - prescribed
-// work, from the first row to the last.
+// The energy given to the cloth from outside its equations, in the energy balance:
+// the work of prescribed motion (statistics.csv's prescribed_work; time/stepper_core.h,
+// physics/contact_work.cc) and the energy of the strain limit's corrections
+// (strain_limit_energy). Balance: total + dissipated - both, from the first row to the
+// last.
 // 1. Pins driven along a circle (tests/scenes/moving_pins.prm, damped): with the
 //    average vector field, which keeps the energy, the balance is below 0.5 % of the
 //    work at dt = 5 ms and falls at second order (at least 8 times from dt to dt/4);
@@ -19,6 +21,11 @@
 //    of it and at least 5 times smaller than at dt = 250 us (BDF2's damping of the
 //    impact).
 // 5. A scene that prescribes no motion has no prescribed_work column.
+// 6. The hanging sheet as springs with a strain limit of 2 % (backward Euler, 0.5 s):
+//    the limit cannot hold the strain at the point pins (springs there stay stretched
+//    beyond 10 %), and its corrections add over 0.1 J, which the step's damping takes
+//    out again; with them in the balance, the balance falls (below -0.1 J), as backward
+//    Euler's must.
 
 #include "csv.h"
 #include "test_support.h"
@@ -39,7 +46,7 @@ namespace
   Balance
   run_balance(const std::string &name, std::vector<std::string> arguments)
   {
-    const std::string output = scratch_directory("clothsim-prescribed-work-" + name);
+    const std::string output = scratch_directory("clothsim-energy-inputs-" + name);
     arguments.insert(arguments.end(),
                      {"--set", "Output/Progress=off", "--output-dir", output});
     if (run_clothsim(arguments) != 0)
@@ -173,7 +180,7 @@ main(int argc, char **argv)
               5.);
 
   // 5. No motion, no column.
-  const std::string        still = scratch_directory("clothsim-prescribed-work-still");
+  const std::string        still = scratch_directory("clothsim-energy-inputs-still");
   std::vector<std::string> arguments =
     with("tests/scenes/moving_pins.prm",
          {"Constraints/Pinned displacement=0; 0; 0", "Time/End time=0.04"});
@@ -187,5 +194,23 @@ main(int argc, char **argv)
         column = column || name == "prescribed_work";
     }
   check(out, !column, "pins held still: no prescribed_work column");
+
+  // 6. The strain limit.
+  const std::string limited = scratch_directory("clothsim-energy-inputs-limit");
+  arguments                 = with("params/hanging-sheet-mass-spring.prm",
+                   {"Mass spring/Strain limit=0.02", "Time/End time=0.5"});
+  arguments.insert(arguments.end(),
+                   {"--set", "Output/Progress=off", "--output-dir", limited});
+  if (check(out, run_clothsim(arguments) == 0, "strain limit: the run completes"))
+    {
+      const Csv          statistics = read_csv(limited + "/statistics.csv");
+      const unsigned int last       = statistics.rows.size() - 1;
+      const double       added      = statistics.number(last, "strain_limit_energy");
+      const double       balance    = statistics.number(last, "total_energy") -
+                             statistics.number(0, "total_energy") +
+                             statistics.number(last, "damping_dissipated") - added;
+      check_above(out, "strain limit: the energy its corrections added, J", added, 0.1);
+      check_below(out, "strain limit: balance, J", balance, -0.1);
+    }
   return finish_tally(out);
 }
