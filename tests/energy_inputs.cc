@@ -26,6 +26,9 @@
 //    beyond 10 %), and its corrections add over 0.1 J, which the step's damping takes
 //    out again; with them in the balance, the balance falls (below -0.1 J), as backward
 //    Euler's must.
+// 7. A ball driven at 15 m/s into the sheet, the adaptive barrier stiffness on: the
+//    energy of the stiffness raises (stiffness_raise_energy) grows in exactly the steps
+//    whose stiffness rose where its barrier had energy at the step's start.
 
 #include "csv.h"
 #include "test_support.h"
@@ -211,6 +214,47 @@ main(int argc, char **argv)
                              statistics.number(last, "damping_dissipated") - added;
       check_above(out, "strain limit: the energy its corrections added, J", added, 0.1);
       check_below(out, "strain limit: balance, J", balance, -0.1);
+    }
+
+  // 7. Raises of the barrier stiffness.
+  const std::string raised = scratch_directory("clothsim-energy-inputs-raises");
+  arguments                = with("params/contact/sheet-on-sphere.prm",
+                   {"Mesh/Mesh file=../../meshes/swing-21.msh",
+                                   "Obstacle 1/Radius=0.1",
+                                   "Obstacle 1/Center=0.5, 0.5, -0.15",
+                                   "Obstacle 1/Translation=0; 0; 15*t",
+                                   "Contact/Adaptive barrier stiffness=true",
+                                   "Time/End time=0.1",
+                                   "Output/Write VTK=false"});
+  arguments.insert(arguments.end(),
+                   {"--set", "Output/Progress=off", "--output-dir", raised});
+  if (check(out, run_clothsim(arguments) == 0, "stiffness raises: the run completes"))
+    {
+      const Csv    statistics  = read_csv(raised + "/statistics.csv");
+      unsigned int rows_raised = 0, mismatches = 0;
+      for (unsigned int row = 1; row < statistics.rows.size(); ++row)
+        {
+          // A raise adds energy where its barrier had energy at the step's start.
+          bool rose = false;
+          for (const std::string term : {"contact", "self_contact"})
+            rose = rose || (statistics.number(row, term + "_barrier_stiffness") >
+                              statistics.number(row - 1, term + "_barrier_stiffness") &&
+                            statistics.number(row - 1, term + "_energy") > 0.);
+          const double added = statistics.number(row, "stiffness_raise_energy") -
+                               statistics.number(row - 1, "stiffness_raise_energy");
+          rows_raised += rose ? 1 : 0;
+          mismatches += rose != (added > 0.) ? 1 : 0;
+        }
+      check_above(
+        out,
+        "stiffness raises: steps that raised a stiffness with energy in its barrier",
+        rows_raised,
+        0.5);
+      check_below(out,
+                  "stiffness raises: steps whose raise energy grew without a raise, or "
+                  "did not grow with one",
+                  mismatches,
+                  0.5);
     }
   return finish_tally(out);
 }

@@ -158,10 +158,10 @@ namespace clothsim
     }
 
     // After a dynamic run, completed or failed: if the energy balance (total +
-    // dissipated - the work of prescribed motion - the strain limit's energy) rose by
-    // more than the energy the run had to move with (its initial kinetic and elastic
-    // energy and the largest potential energy), the integrator made that energy. The
-    // balance leaves out raises of the barrier stiffness.
+    // dissipated - the energy given from outside the step's equations: the work of
+    // prescribed motion, the strain limit's and the barrier stiffness raises' energy)
+    // rose by more than the energy the run had to move with (its initial kinetic and
+    // elastic energy and the largest potential energy), the integrator made that energy.
     void
     print_instability_note(const Parameters   &parameters,
                            const OutputWriter &output,
@@ -172,9 +172,7 @@ namespace clothsim
         return;
       pcout << "  warning: the energy balance rose by " << gained
             << " J, more than the run's initial and potential energy ("
-            << output.energy_scale()
-            << " J): the time integration was unstable (unless raises of the barrier "
-               "stiffness, which the balance leaves out, made it)";
+            << output.energy_scale() << " J): the time integration was unstable";
       if (parameters.time.integrator == Integrator::implicit_midpoint)
         pcout << "; the implicit midpoint rule is not energy-stable on stiff nonlinear "
                  "motion such as folding cloth (README, \"Time integration\"): 'average "

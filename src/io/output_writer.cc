@@ -241,11 +241,12 @@ namespace clothsim
     }
 
     // Energy given to the cloth from outside its equations: the work of prescribed
-    // motion, the strain limit's corrections.
+    // motion, the strain limit's corrections, raises of the barrier stiffness.
     bool
     is_added_column(const std::string &name)
     {
-      return name == "prescribed_work" || name == "strain_limit_energy";
+      return name == "prescribed_work" || name == "strain_limit_energy" ||
+             name == "stiffness_raise_energy";
     }
   } // namespace
 

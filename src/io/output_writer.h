@@ -125,7 +125,8 @@ namespace clothsim
     // The run's closing summary, for its log: each probe's displacement in the last
     // written state, the energies of the first and last statistics rows, the work
     // dissipated (columns named *_dissipated), the energy given from outside (columns
-    // prescribed_work, strain_limit_energy), with the balance total + dissipated - given,
+    // prescribed_work, strain_limit_energy, stiffness_raise_energy), with the balance
+    // total + dissipated - given,
     // and the path of solution.pvd to open in ParaView.
     void
     print_summary(std::ostream &out) const;

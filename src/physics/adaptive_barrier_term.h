@@ -8,7 +8,9 @@
 //   and the closest distance at u_n is recorded;
 // - adapt_stiffness, at each iterate Newton's line search accepts (after add_to_step
 //   there): may double the scale; returns whether it did;
-// - commit_step keeps the scale for the next step; a checkpoint keeps it too.
+// - commit_step keeps the scale for the next step; a checkpoint keeps it too;
+// - raise_energy, before commit_step: the energy the raises of the step added at its
+//   start, for the energy balance.
 // All collective: the closest distance is the minimum over the ranks, so every rank
 // decides the same.
 
@@ -58,6 +60,18 @@ namespace clothsim::physics
     {
       return stiffness;
     }
+    // The energy that raising the scale since the last commit added at u_n (ghosted) at
+    // t_n, J (collective): the barrier is linear in κ, so (1 - committed/current) of its
+    // energy there at the current scale.
+    double
+    raise_energy(const VectorType &u_n, const double t_n) const
+    {
+      const double current = stiffness.scale(), committed = stiffness.committed_scale();
+      if (current == committed) // the same on every rank
+        return 0.;
+      return (1. - committed / current) *
+             dealii::Utilities::MPI::sum(barrier_energy(u_n, t_n), communicator);
+    }
 
     void
     commit_step(const VectorType & /*u*/, VectorType & /*u_owned*/) override
@@ -77,6 +91,9 @@ namespace clothsim::physics
     }
 
   protected:
+    // This rank's part of the barrier's energy at u (ghosted), the obstacles at `time`.
+    virtual double
+    barrier_energy(const VectorType &u, const double time) const = 0;
     // The closest distance that counts at u_n (ghosted) at t_n (m, over all ranks; +inf
     // if none is near). Collective.
     virtual double

@@ -67,6 +67,12 @@ namespace clothsim::physics
       ++n_raised;
       return true;
     }
+    // The scale of the last accepted step.
+    double
+    committed_scale() const
+    {
+      return committed;
+    }
     // After an accepted step: its scale is where the next attempts start.
     void
     commit()

@@ -176,6 +176,20 @@ namespace clothsim::physics
   }
 
 
+  double
+  ObstacleContact::barrier_energy(const VectorType &u, const double time) const
+  {
+    // add_to_step records its time for energy() and the report; that stays the step's.
+    const double kept = state_time;
+    StepTerms    step;
+    step.time = time;
+    const double value =
+      add_to_step(u, step, AffineConstraints<double>(), nullptr, nullptr, nullptr);
+    state_time = kept;
+    return value;
+  }
+
+
   std::string
   ObstacleContact::begin_step(const double                     t_n,
                               const double                     t_new,

@@ -251,6 +251,8 @@ namespace clothsim::physics
     position(const Vertex &vertex, const double *u_local) const;
 
   private:
+    double
+    barrier_energy(const VectorType &u, const double time) const override;
     // For the adaptive barrier stiffness: report(u_n, t_n).min_distance (every vertex's
     // and every pair's within d̂); the scale is also mesh_pairs'.
     double

@@ -173,6 +173,12 @@ namespace clothsim::physics
     }
 
   private:
+    // The barrier's energy at u (the cloth's own: no time).
+    double
+    barrier_energy(const VectorType &u, const double /*time*/) const override
+    {
+      return energy(u, u, nullptr);
+    }
     // For the adaptive barrier stiffness: the closest pair at u_n within the stiffening
     // distance (report()).
     double

@@ -310,6 +310,16 @@ namespace clothsim
     std::pair<types::global_dof_index, double>
     limit_strain(VectorType &u, VectorType &v, const double dt) const override;
     double
+    stiffness_raise_energy(const VectorType &u_n, const double t_n) const override
+    {
+      double energy = 0.;
+      if (adapts_stiffness() && contact != nullptr)
+        energy += contact->raise_energy(u_n, t_n);
+      if (adapts_stiffness() && self_contact != nullptr)
+        energy += self_contact->raise_energy(u_n, t_n);
+      return energy;
+    }
+    double
     mechanical_energy(const VectorType &u, const VectorType &v) const override
     {
       const physics::Energies energies = model->energies(u, v);

@@ -59,6 +59,9 @@ namespace clothsim
     // The energy Provot's strain limit has added by its corrections so far (J).
     if (has_strain_limit())
       columns.push_back("strain_limit_energy");
+    // The energy the adaptive barrier stiffness's raises added (J).
+    if (adapts_stiffness())
+      columns.push_back("stiffness_raise_energy");
     return columns;
   }
 
@@ -91,10 +94,10 @@ namespace clothsim
     const bool         intersecting = parameters.output.check_intersections;
     const unsigned int adaptive     = adapts_stiffness() ? 1 : 0;
     const double       a_b          = parameters.contact.barrier_acceleration;
-    std::size_t        column = energies.columns.size() - (drape_radius > 0. ? 2 : 0) -
-                         (intersecting ? 1 : 0) -
-                         (self_contact != nullptr ? 2 + adaptive : 0) -
-                         (has_prescribed_motion() ? 1 : 0) - (has_strain_limit() ? 1 : 0);
+    std::size_t        column =
+      energies.columns.size() - (drape_radius > 0. ? 2 : 0) - (intersecting ? 1 : 0) -
+      (self_contact != nullptr ? 2 + adaptive : 0) - (has_prescribed_motion() ? 1 : 0) -
+      (has_strain_limit() ? 1 : 0) - adaptive;
     if (contact != nullptr)
       {
         const physics::ObstacleContact::Report contacts =

@@ -45,9 +45,10 @@ namespace clothsim
     wall_clock.restart();
     model.import_ghosts(u, u_ghosted);
     model.import_ghosts(v, v_ghosted);
-    dissipated     = 0.;
-    prescribed     = 0.;
-    strain_limited = 0.;
+    dissipated       = 0.;
+    prescribed       = 0.;
+    strain_limited   = 0.;
+    stiffness_raised = 0.;
     write_frame(0, 0.);
     const EnergyReport energies = current_energies();
     output.write_statistics({0,
@@ -271,6 +272,7 @@ namespace clothsim
     run.set("core dissipated", dissipated);
     run.set("core prescribed work", prescribed);
     run.set("core strain limit energy", strain_limited);
+    run.set("core stiffness raise energy", stiffness_raised);
     run.set("core frame step", frame_step);
     run.set("core any frame", any_frame ? 1. : 0.);
     run.set("core wall seconds", wall_offset + wall_clock.wall_time());
@@ -284,7 +286,8 @@ namespace clothsim
     // Checkpoints before these were counted have none.
     for (const auto &[name, value] :
          {std::make_pair("core prescribed work", &prescribed),
-          std::make_pair("core strain limit energy", &strain_limited)})
+          std::make_pair("core strain limit energy", &strain_limited),
+          std::make_pair("core stiffness raise energy", &stiffness_raised)})
       *value = run.has(name) ? run.get_number(name) : 0.;
     frame_step  = static_cast<unsigned int>(run.get_number("core frame step"));
     any_frame   = run.get_number("core any frame") != 0.;

@@ -165,14 +165,16 @@ namespace clothsim
     // with zero prescribed displacements) and the loads' potential -f·u, J, in place of
     // the nonlinear model's (the terms' own columns stay the model's).
     std::optional<std::pair<double, double>> linear_energies;
-    // The model's report with the linear energies, the prescribed work and the strain
-    // limit's energy (its last columns) set.
+    // The model's report with the linear energies, the prescribed work, the strain
+    // limit's and the stiffness raises' energies (its last columns) set.
     EnergyReport
     reported(EnergyReport report) const
     {
       if (linear_energies)
         std::tie(report.elastic, report.potential) = *linear_energies;
       std::size_t column = report.columns.size();
+      if (model.adapts_stiffness())
+        report.columns[--column] = stiffness_raised;
       if (model.has_strain_limit())
         report.columns[--column] = strain_limited;
       if (model.has_prescribed_motion())
@@ -232,6 +234,7 @@ namespace clothsim
     double     dissipated     = 0.;  // J, work done against damping so far
     double     prescribed     = 0.;  // J, work done on the cloth by prescribed motion
     double     strain_limited = 0.;  // J, energy added by the strain limit's corrections
+    double stiffness_raised   = 0.;  // J, ... by raises of the adaptive barrier stiffness
     // Owned: the step forces of the last step added with `trapezoid` (empty before
     // it), for the next one's trapezoidal rule (add_prescribed_work); checkpointed by
     // the steppers.

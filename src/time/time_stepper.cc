@@ -257,6 +257,10 @@ namespace clothsim
   void
   TimeStepper::commit_step(const unsigned int step, const double dt)
   {
+    // What the barrier stiffness's raises in this step added, at its start (u_ghosted
+    // holds the state n until the end of this function).
+    if (model.adapts_stiffness())
+      stiffness_raised += model.stiffness_raise_energy(u_ghosted, last_terms.time - dt);
     // The work of prescribed motion: the steps that solve for their end state take the
     // trapezoidal rule over their end forces, the midpoint rules their midpoint's.
     if (dynamic)
