@@ -44,6 +44,7 @@ namespace clothsim
                          const Triangulation<2, 3> &serial_mesh,
                          const mesh::MeshGroups    &groups)
     : parameters(parameters)
+    , prescribed_motion(parameters.prescribes_motion())
     , discretization(communicator,
                      serial_mesh,
                      mesh_setup(communicator, parameters, parameter_file, serial_mesh))

@@ -280,7 +280,7 @@ namespace clothsim
     bool
     has_prescribed_motion() const override
     {
-      return parameters.prescribes_motion();
+      return prescribed_motion;
     }
     void
     step_forces(const VectorType &u,
@@ -381,7 +381,10 @@ namespace clothsim
     std::vector<physics::MeshTriangle>
     triangles_on_root(const VectorType &u) const;
 
-    const Parameters                   &parameters;
+    const Parameters &parameters;
+    // Parameters::prescribes_motion(), read once (it parses expressions; the steppers
+    // ask every step).
+    const bool                          prescribed_motion;
     mesh::Discretization                discretization;
     std::unique_ptr<BoundaryConditions> boundary_conditions;
     std::unique_ptr<physics::Model>     model;
