@@ -161,7 +161,8 @@ namespace clothsim
     // dissipated - the energy given from outside the step's equations: the work of
     // prescribed motion, the strain limit's and the barrier stiffness raises' energy)
     // rose by more than the energy the run had to move with (its initial kinetic and
-    // elastic energy and the largest potential energy), the integrator made that energy.
+    // elastic energy, the largest potential energy and the largest energy given from
+    // outside), the integrator made that energy.
     void
     print_instability_note(const Parameters   &parameters,
                            const OutputWriter &output,
@@ -171,7 +172,8 @@ namespace clothsim
       if (!(gained > output.energy_scale()))
         return;
       pcout << "  warning: the energy balance rose by " << gained
-            << " J, more than the run's initial and potential energy ("
+            << " J, more than the energy the run moved with (initial, potential and "
+               "given from outside: "
             << output.energy_scale() << " J): the time integration was unstable";
       if (parameters.time.integrator == Integrator::implicit_midpoint)
         pcout << "; the implicit midpoint rule is not energy-stable on stiff nonlinear "
@@ -241,7 +243,7 @@ namespace clothsim
           // What was computed up to the failure: every file written so far is whole.
           if (output && is_root)
             output->print_summary(std::cout);
-          if (output)
+          if (output && !is_static(parameters.time.integrator))
             print_instability_note(parameters, *output, pcout);
         }
       catch (...)

@@ -14,6 +14,28 @@
 
 namespace clothsim
 {
+  namespace
+  {
+    // The work a dissipative term has taken out of the motion: its column ends so.
+    bool
+    is_dissipated_column(const std::string &name)
+    {
+      const std::string suffix = "_dissipated";
+      return name.size() > suffix.size() &&
+             name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+    }
+
+    // Energy given to the cloth from outside its equations: the work of prescribed
+    // motion, the strain limit's corrections, raises of the barrier stiffness.
+    bool
+    is_added_column(const std::string &name)
+    {
+      return name == "prescribed_work" || name == "strain_limit_energy" ||
+             name == "stiffness_raise_energy";
+    }
+  } // namespace
+
+
   OutputWriter::OutputWriter(const std::string                &directory,
                              const MPI_Comm                    communicator,
                              const io::SurfacePiece           &piece,
@@ -172,6 +194,11 @@ namespace clothsim
       first_statistics = row;
     last_statistics   = row;
     largest_potential = std::max(largest_potential, std::abs(row.potential_energy));
+    double added      = 0.;
+    for (unsigned int c = 0; c < energy_columns.size(); ++c)
+      if (is_added_column(energy_columns[c]))
+        added += std::abs(row.term_energies[c] - first_statistics->term_energies[c]);
+    largest_added = std::max(largest_added, added);
     io::run_collectively(communicator, [&]() {
       if (!is_root)
         return;
@@ -229,28 +256,6 @@ namespace clothsim
   }
 
 
-  namespace
-  {
-    // The work a dissipative term has taken out of the motion: its column ends so.
-    bool
-    is_dissipated_column(const std::string &name)
-    {
-      const std::string suffix = "_dissipated";
-      return name.size() > suffix.size() &&
-             name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-    }
-
-    // Energy given to the cloth from outside its equations: the work of prescribed
-    // motion, the strain limit's corrections, raises of the barrier stiffness.
-    bool
-    is_added_column(const std::string &name)
-    {
-      return name == "prescribed_work" || name == "strain_limit_energy" ||
-             name == "stiffness_raise_energy";
-    }
-  } // namespace
-
-
   double
   OutputWriter::energy_balance_change() const
   {
@@ -275,7 +280,7 @@ namespace clothsim
     if (!first_statistics)
       return 0.;
     return first_statistics->kinetic_energy + first_statistics->elastic_energy +
-           largest_potential;
+           largest_potential + largest_added;
   }
 
 

@@ -133,7 +133,9 @@ namespace clothsim
 
     // The balance of print_summary(), total + dissipated - given from the first
     // statistics row to the last (J; 0 before any row), and the energy the run had
-    // to move with: the first row's K + W plus the largest |P| of any row written (J).
+    // to move with: the first row's K + W plus the largest |P| of any row written plus
+    // the largest |energy given from outside| (prescribed work, strain limit, stiffness
+    // raises, each from the first row) of any row written (J).
     double
     energy_balance_change() const;
     double
@@ -164,5 +166,6 @@ namespace clothsim
     std::vector<double>           last_probe_values;
     std::optional<StepStatistics> first_statistics, last_statistics;
     double                        largest_potential = 0.; // J, of any row
+    double                        largest_added     = 0.; // J, of any row
   };
 } // namespace clothsim
