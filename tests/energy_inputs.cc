@@ -28,7 +28,7 @@
 //    Euler's must.
 // 7. A ball driven at 15 m/s into the sheet, the adaptive barrier stiffness on: the
 //    energy of the stiffness raises (stiffness_raise_energy) grows in exactly the steps
-//    whose stiffness rose where its barrier had energy at the step's start.
+//    whose stiffness rose where its barrier has energy at the step's end.
 
 #include "csv.h"
 #include "test_support.h"
@@ -234,12 +234,12 @@ main(int argc, char **argv)
       unsigned int rows_raised = 0, mismatches = 0;
       for (unsigned int row = 1; row < statistics.rows.size(); ++row)
         {
-          // A raise adds energy where its barrier had energy at the step's start.
+          // A raise adds energy where its barrier has energy at the step's end.
           bool rose = false;
           for (const std::string term : {"contact", "self_contact"})
             rose = rose || (statistics.number(row, term + "_barrier_stiffness") >
                               statistics.number(row - 1, term + "_barrier_stiffness") &&
-                            statistics.number(row - 1, term + "_energy") > 0.);
+                            statistics.number(row, term + "_energy") > 0.);
           const double added = statistics.number(row, "stiffness_raise_energy") -
                                statistics.number(row - 1, "stiffness_raise_energy");
           rows_raised += rose ? 1 : 0;

@@ -6,7 +6,9 @@
 // ends, f_i the barrier's force on the cloth at x_i, δ the obstacle's rigid displacement
 // over the step there (a rigid motion's displacement differs between x_i and the
 // obstacle's nearest point by a turn about the gap, perpendicular to f_i). An obstacle
-// removed in the step takes its barrier energy with it.
+// removed in the step takes its barrier energy with it. The barrier's stiffness is the
+// last accepted step's, κ_old: a raise within the step counts at its end
+// (AdaptiveBarrierTerm::raise_energy).
 
 #include <deal.II/base/mpi.h>
 
@@ -14,6 +16,7 @@
 #include "physics/contact_potential.h"
 #include "physics/contact_term.h"
 
+#include <algorithm>
 #include <functional>
 
 namespace clothsim::physics
@@ -26,9 +29,9 @@ namespace clothsim::physics
   {
     const std::vector<RigidPose> start = poses_at(t_n), end = poses_at(t_new);
     const unsigned int           n_obstacles = obstacles.size();
-    const double                 d_hat = settings.thickness, scale = stiffness.scale();
-    const auto                   n_local = discretization.relevant_dofs().n_elements();
-    const auto displacement              = [&](const unsigned int o, const Point<3> &x) {
+    const double d_hat = settings.thickness, scale = stiffness.committed_scale();
+    const auto   n_local      = discretization.relevant_dofs().n_elements();
+    const auto   displacement = [&](const unsigned int o, const Point<3> &x) {
       return Tensor<1, 3>(end[o].to_world(start[o].to_body(x)) - x);
     };
     // The vertices' barrier energies, or their forces' work, against the analytic
@@ -74,20 +77,22 @@ namespace clothsim::physics
     if (!any_moving && !any_removed) // the same on every rank
       return 0.;
     // The trapezoidal rule over the step's two ends, each state with its poses.
-    const double       *start_local = ghosted_values(u_n, n_local);
-    const double       *end_local   = ghosted_values(u_new, n_local);
-    std::vector<double> unused(n_obstacles, 0.);
+    const double *start_local = ghosted_values(u_n, n_local);
+    const double *end_local   = ghosted_values(u_new, n_local);
+    // The mesh pairs' barrier has the current κ: linear in it, their sums are rescaled.
+    const double        to_committed = scale / stiffness.scale();
+    std::vector<double> unused(n_obstacles, 0.), pair_sums(n_obstacles, 0.);
     for (const auto &[local, poses] :
          {std::make_pair(start_local, &start), std::make_pair(end_local, &end)})
       {
         vertex_sums(local, *poses, moving, false, work);
         if (!mesh_pairs.empty())
-          mesh_pairs.pair_work(local, *poses, displacement, work, unused);
+          mesh_pairs.pair_work(local, *poses, displacement, pair_sums, unused);
       }
     double total = 0.;
     for (unsigned int o = 0; o < n_obstacles; ++o)
       if (moving(o))
-        total += 0.5 * work[o];
+        total += 0.5 * (work[o] + to_committed * pair_sums[o]);
 
     if (any_removed)
       {
@@ -97,11 +102,12 @@ namespace clothsim::physics
             const auto none = [](const unsigned int, const Point<3> &) {
               return Tensor<1, 3>();
             };
-            mesh_pairs.pair_work(start_local, start, none, unused, leaving);
+            std::fill(pair_sums.begin(), pair_sums.end(), 0.);
+            mesh_pairs.pair_work(start_local, start, none, unused, pair_sums);
           }
         for (unsigned int o = 0; o < n_obstacles; ++o)
           if (removed(o))
-            total -= leaving[o];
+            total -= leaving[o] + to_committed * pair_sums[o];
       }
     return Utilities::MPI::sum(total, discretization.get_communicator());
   }

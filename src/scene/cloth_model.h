@@ -310,13 +310,13 @@ namespace clothsim
     std::pair<types::global_dof_index, double>
     limit_strain(VectorType &u, VectorType &v, const double dt) const override;
     double
-    stiffness_raise_energy(const VectorType &u_n, const double t_n) const override
+    stiffness_raise_energy(const VectorType &u_new, const double t_new) const override
     {
       double energy = 0.;
       if (adapts_stiffness() && contact != nullptr)
-        energy += contact->raise_energy(u_n, t_n);
+        energy += contact->raise_energy(u_new, t_new);
       if (adapts_stiffness() && self_contact != nullptr)
-        energy += self_contact->raise_energy(u_n, t_n);
+        energy += self_contact->raise_energy(u_new, t_new);
       return energy;
     }
     double

@@ -194,11 +194,11 @@ namespace clothsim
     has_strain_limit() const = 0;
     virtual std::pair<types::global_dof_index, double>
     limit_strain(VectorType &u, VectorType &v, const double dt) const = 0;
-    // The energy that the adaptive barrier stiffness's raises in the step from u_n
-    // (ghosted) at t_n added at u_n (physics/adaptive_barrier_term.h), J (collective);
-    // before commit_step.
+    // The energy that the adaptive barrier stiffness's raises in a step added, at its end
+    // u_new (ghosted) at t_new (physics/adaptive_barrier_term.h), J (collective); before
+    // commit_step.
     virtual double
-    stiffness_raise_energy(const VectorType &u_n, const double t_n) const = 0;
+    stiffness_raise_energy(const VectorType &u_new, const double t_new) const = 0;
     // K + W + P at (u, v), ghosted, J (collective): the energy report's total alone.
     virtual double
     mechanical_energy(const VectorType &u, const VectorType &v) const = 0;

@@ -257,10 +257,12 @@ namespace clothsim
   void
   TimeStepper::commit_step(const unsigned int step, const double dt)
   {
-    // What the barrier stiffness's raises in this step added, at its start (u_ghosted
-    // holds the state n until the end of this function).
+    // What the barrier stiffness's raises in this step added, at its end.
     if (model.adapts_stiffness())
-      stiffness_raised += model.stiffness_raise_energy(u_ghosted, last_terms.time - dt);
+      {
+        model.import_ghosts(u_new, check_ghosted);
+        stiffness_raised += model.stiffness_raise_energy(check_ghosted, last_terms.time);
+      }
     // The work of prescribed motion: the steps that solve for their end state take the
     // trapezoidal rule over their end forces, the midpoint rules their midpoint's.
     if (dynamic)
