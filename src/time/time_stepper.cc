@@ -257,12 +257,10 @@ namespace clothsim
   void
   TimeStepper::commit_step(const unsigned int step, const double dt)
   {
-    // What the barrier stiffness's raises in this step added, at its end.
+    // What the barrier stiffness's raises in this step added, at its end (check_ghosted
+    // holds u_new since the attempt's check).
     if (model.adapts_stiffness())
-      {
-        model.import_ghosts(u_new, check_ghosted);
-        stiffness_raised += model.stiffness_raise_energy(check_ghosted, last_terms.time);
-      }
+      stiffness_raised += model.stiffness_raise_energy(check_ghosted, last_terms.time);
     // The work of prescribed motion: the steps that solve for their end state take the
     // trapezoidal rule over their end forces, the midpoint rules their midpoint's.
     if (dynamic)
