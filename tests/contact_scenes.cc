@@ -14,8 +14,9 @@
 //    the weight: the plane's force on the sheet equals m g within 1e-6.
 // 3. A fast obstacle (a sphere of radius 10 cm rising at 15 m/s, 25 cm per step: it would
 //    pass through the sheet within one step without the continuous collision detection)
-//    hits the sheet from below and carries it: after 0.1 s (1.5 m) the sheet's centre is
-//    above the sphere's top, and no point of a triangle was ever inside the sphere.
+//    hits the sheet from below and carries it: after 0.1 s (1.5 m) the sheet's centre
+//    rides on the sphere's upper half within 1 cm of its surface, and no point of a
+//    triangle was ever inside the sphere.
 //    The whipping edge folds the creases' hinges shut: with 'Adaptive barrier
 //    stiffness' self-contact's κ is raised, and no step is halved (without it the run
 //    stops at 0.097 s, README "Self-contact"). With edge contact, whose 'Edge contact
@@ -183,12 +184,24 @@ namespace
     bool passed = run(pcout, "fast obstacle", join(fast, {"Time/End time=0.1"}), result);
     if (!passed)
       return false;
-    const double top = -0.15 + 15. * 0.1 + 0.1;
-    passed &=
-      check_above(pcout,
-                  "fast obstacle: the centre's height - the sphere's top at 0.1 s, m",
-                  centre_at(root / "fast obstacle", 0.1)[2] - top,
-                  0.);
+    // Carried: the sheet's centre rides on the sphere's upper half, within 1 cm of its
+    // surface (it would be 1.5 m behind, had the sphere tunnelled). Not "above the top":
+    // the symmetric sheet balanced on the ball slides off its top one way or the other
+    // as round-off decides (1.2 mm above the top at -O2; 5.4 cm aside and 1.2 cm below
+    // it at -O0, 3.4 mm from the surface).
+    const Point<3> sphere_centre(0.5, 0.5, -0.15 + 15. * 0.1);
+    const Point<3> centre =
+      Point<3>(0.5, 0.5, 0.) + centre_at(root / "fast obstacle", 0.1);
+    const double gap = centre.distance(sphere_centre) - 0.1;
+    passed &= check_above(pcout,
+                          "fast obstacle: the centre's height above the sphere's centre "
+                          "at 0.1 s, m",
+                          centre[2] - sphere_centre[2],
+                          0.);
+    passed &= check_above(
+      pcout, "fast obstacle: the centre's distance to the sphere at 0.1 s, m", gap, 0.);
+    passed &= check_below(
+      pcout, "fast obstacle: the centre's distance to the sphere at 0.1 s, m", gap, 0.01);
     // The whipping edge folds hinges shut that the default stiffness holds only near
     // round-off (1.9e-6 m, where Newton stalls on the pairs' step cap: stopped at
     // 0.097 s without the adaptive stiffness): raised, no step is halved, and the
