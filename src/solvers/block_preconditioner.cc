@@ -94,18 +94,39 @@ namespace clothsim
     };
 
     // A: the displacement rows restricted to displacement columns; the hinge stencil of
-    // the Schur correction makes rows longer, so the profile grows as needed.
-    // The old hierarchy first: it refers to the old matrix (ML's IFPACK smoothers read
-    // it when destroyed).
+    // the Schur correction makes rows longer. The first tangent builds S̃'s profile; later
+    // ones (the same sparsity: a new one makes a new BlockPreconditioner) only add into
+    // it: 0.22 s against 0.44 s per tangent on the swing at N = 161 (one core). The old
+    // hierarchy first: it refers to the old matrix (ML's IFPACK smoothers read it when
+    // destroyed).
     amg.reset();
-    block_matrix = std::make_unique<Epetra_FECrsMatrix>(Copy, map, 64);
+    const bool refill = block_matrix != nullptr;
+    if (refill)
+      block_matrix->PutScalar(0.);
+    else
+      block_matrix = std::make_unique<Epetra_FECrsMatrix>(Copy, map, 64);
+    const auto add = [&](const int     n_rows,
+                         const int    *rows,
+                         const int     n_columns,
+                         const int    *columns,
+                         const double *values) {
+      const int status =
+        refill
+          ? block_matrix->SumIntoGlobalValues(
+              n_rows, rows, n_columns, columns, values, Epetra_FECrsMatrix::ROW_MAJOR)
+          : block_matrix->InsertGlobalValues(
+              n_rows, rows, n_columns, columns, values, Epetra_FECrsMatrix::ROW_MAJOR);
+      AssertThrow(status >= 0 && !(refill && status > 0),
+                  ExcMessage("the Schur complement's profile does not hold an entry "
+                             "of the tangent (Epetra status " +
+                             std::to_string(status) + ")"));
+    };
     double unused_diagonal;
     for (unsigned int k = 0; k < displacement_local.size(); ++k)
       {
         split_row(displacement_local[k], unused_diagonal);
         const int row = first_row + k;
-        block_matrix->InsertGlobalValues(
-          1, &row, columns.size(), columns.data(), entries.data());
+        add(1, &row, columns.size(), columns.data(), entries.data());
       }
 
     // D and -B D⁻¹ Bᵀ: each angle row's displacement entries b give -b bᵀ / D_ψψ.
@@ -125,14 +146,12 @@ namespace clothsim
         for (unsigned int a = 0; a < columns.size(); ++a)
           for (unsigned int b = 0; b < columns.size(); ++b)
             outer[a * columns.size() + b] = -entries[a] * entries[b] / diagonal;
-        block_matrix->InsertGlobalValues(columns.size(),
-                                         columns.data(),
-                                         columns.size(),
-                                         columns.data(),
-                                         outer.data(),
-                                         Epetra_FECrsMatrix::ROW_MAJOR);
+        add(columns.size(), columns.data(), columns.size(), columns.data(), outer.data());
       }
-    block_matrix->GlobalAssemble();
+    // Later tangents reuse the profile and the exporter of other ranks' rows.
+    block_matrix->GlobalAssemble(/*callFillComplete=*/!refill,
+                                 Add,
+                                 /*save_off_and_reuse_map_exporter=*/true);
 
     amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     amg->initialize(*block_matrix, ml_parameters);
