@@ -195,8 +195,11 @@ namespace clothsim
       "Preconditioner",
       "amg",
       Patterns::Selection("amg|jacobi"),
-      "'amg': ML smoothed-aggregation algebraic multigrid with one constant "
-      "mode per displacement component; 'jacobi': point Jacobi.");
+      "'amg': ML smoothed-aggregation algebraic multigrid, its near-null space the "
+      "three translations and, for a nearly planar sheet, the rotation about its "
+      "normal; with shell bending inside the block factorisation of the tangent (the "
+      "director angles by their diagonal, AMG on the displacements' Schur "
+      "complement). 'jacobi': point Jacobi.");
     prm.declare_entry(
       "Relative tolerance",
       "1e-6",
