@@ -50,6 +50,10 @@ namespace clothsim
           const TrilinosWrappers::MPI::Vector &src) const;
 
   private:
+    // A later tangent on one rank: S̃'s values replaced in place, row by row.
+    void
+    refill_in_place(const Epetra_CrsMatrix &A);
+
     MPI_Comm communicator;
     IndexSet owned;
     IndexSet block_owned; // 0 .. n_displacements, this rank's contiguous range
@@ -63,6 +67,11 @@ namespace clothsim
     // changes).
     TrilinosWrappers::MPI::Vector block_index_ghosted;
     std::vector<int>              column_block;
+
+    // For refill_in_place: each tangent column's row, each row's angle index (-1 for
+    // displacements), each tangent column's local column in S̃, and a scatter of S̃'s
+    // columns within a row (-1 outside it).
+    std::vector<int> column_row, angle_of_row, block_column, scatter;
 
     const TrilinosWrappers::SparseMatrix              *tangent = nullptr;
     std::unique_ptr<Epetra_FECrsMatrix>                block_matrix; // S̃
