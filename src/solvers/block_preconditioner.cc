@@ -233,7 +233,7 @@ namespace clothsim
                 continue;
               }
             const int row   = column_row[indices[e]];
-            const int angle = angle_of_row[row];
+            const int angle = row >= 0 ? angle_of_row[row] : -1;
             if (angle < 0)
               continue;
             const double weight = values[e] * other_inverse_diagonal[angle];
