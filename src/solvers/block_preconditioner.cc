@@ -53,9 +53,6 @@ namespace clothsim
   {
     tangent                   = &matrix;
     const Epetra_CrsMatrix &A = matrix.trilinos_matrix();
-    const Epetra_Map        map =
-      block_owned.make_trilinos_map(communicator, /*overlapping=*/false);
-    const int first_row = block_owned.n_elements() > 0 ? *block_owned.begin() : 0;
     if (full_in.size() != matrix.m())
       {
         full_in.reinit(owned, communicator);
@@ -67,6 +64,45 @@ namespace clothsim
         for (int c = 0; c < A.NumMyCols(); ++c)
           column_block[c] = static_cast<int>(block_index_ghosted(A.ColMap().GID(c)));
       }
+
+    // A: the displacement rows restricted to displacement columns; the hinge stencil of
+    // the Schur correction makes rows longer. The first tangent builds S̃'s profile; later
+    // ones (the same sparsity: a new one makes a new BlockPreconditioner) only replace
+    // its values: on one rank in place, row by row (about 0.07 s per tangent on the swing
+    // at N = 161), on several by Epetra's sums (0.22 s there), against 0.44 s to build
+    // it. The old hierarchy first: it refers to the old matrix (ML's IFPACK smoothers
+    // read it when destroyed).
+    amg.reset();
+    const bool refill = block_matrix != nullptr;
+    if (refill && Utilities::MPI::n_mpi_processes(communicator) == 1)
+      refill_in_place(A);
+    else
+      fill_by_sums(A, refill);
+    amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    amg->initialize(*block_matrix, ml_parameters);
+  }
+
+
+  void
+  BlockPreconditioner::set_inverse_diagonal(const unsigned int angle,
+                                            const double       diagonal)
+  {
+    AssertThrow(diagonal > 0.,
+                ExcMessage("the tangent has a non-positive diagonal entry on a director "
+                           "angle"));
+    other_inverse_diagonal[angle] = 1. / diagonal;
+  }
+
+
+  void
+  BlockPreconditioner::fill_by_sums(const Epetra_CrsMatrix &A, const bool refill)
+  {
+    if (refill)
+      block_matrix->PutScalar(0.);
+    else
+      block_matrix = std::make_unique<Epetra_FECrsMatrix>(
+        Copy, block_owned.make_trilinos_map(communicator, /*overlapping=*/false), 64);
+    const int first_row = block_owned.n_elements() > 0 ? *block_owned.begin() : 0;
 
     // The row of the tangent with local index `row`, split into displacement columns
     // (block numbering) and the diagonal entry.
@@ -93,37 +129,24 @@ namespace clothsim
         }
     };
 
-    // A: the displacement rows restricted to displacement columns; the hinge stencil of
-    // the Schur correction makes rows longer. The first tangent builds S̃'s profile; later
-    // ones (the same sparsity: a new one makes a new BlockPreconditioner) only replace
-    // its values: on one rank in place, row by row (about 0.07 s per tangent on the swing
-    // at N = 161), on several by Epetra's sums (0.22 s there), against 0.44 s to build
-    // it. The old hierarchy first: it refers to the old matrix (ML's IFPACK smoothers
-    // read it when destroyed).
-    amg.reset();
-    const bool refill = block_matrix != nullptr;
-    if (refill && Utilities::MPI::n_mpi_processes(communicator) == 1)
-      {
-        refill_in_place(A);
-        amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        amg->initialize(*block_matrix, ml_parameters);
-        return;
-      }
-    if (refill)
-      block_matrix->PutScalar(0.);
-    else
-      block_matrix = std::make_unique<Epetra_FECrsMatrix>(Copy, map, 64);
     const auto add = [&](const int     n_rows,
-                         const int    *rows,
+                         const int    *row_indices,
                          const int     n_columns,
-                         const int    *columns,
+                         const int    *column_indices,
                          const double *values) {
       const int status =
-        refill
-          ? block_matrix->SumIntoGlobalValues(
-              n_rows, rows, n_columns, columns, values, Epetra_FECrsMatrix::ROW_MAJOR)
-          : block_matrix->InsertGlobalValues(
-              n_rows, rows, n_columns, columns, values, Epetra_FECrsMatrix::ROW_MAJOR);
+        refill ? block_matrix->SumIntoGlobalValues(n_rows,
+                                                   row_indices,
+                                                   n_columns,
+                                                   column_indices,
+                                                   values,
+                                                   Epetra_FECrsMatrix::ROW_MAJOR)
+               : block_matrix->InsertGlobalValues(n_rows,
+                                                  row_indices,
+                                                  n_columns,
+                                                  column_indices,
+                                                  values,
+                                                  Epetra_FECrsMatrix::ROW_MAJOR);
       AssertThrow(status >= 0 && !(refill && status > 0),
                   ExcMessage("the Schur complement's profile does not hold an entry "
                              "of the tangent (Epetra status " +
@@ -144,10 +167,7 @@ namespace clothsim
       {
         double diagonal;
         split_row(other_local[k], diagonal);
-        AssertThrow(diagonal > 0.,
-                    ExcMessage("the tangent has a non-positive diagonal entry on a "
-                               "director angle"));
-        other_inverse_diagonal[k] = 1. / diagonal;
+        set_inverse_diagonal(k, diagonal);
         if (columns.empty())
           continue;
         outer.resize(columns.size() * columns.size());
@@ -160,9 +180,6 @@ namespace clothsim
     block_matrix->GlobalAssemble(/*callFillComplete=*/!refill,
                                  Add,
                                  /*save_off_and_reuse_map_exporter=*/true);
-
-    amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-    amg->initialize(*block_matrix, ml_parameters);
   }
 
 
@@ -195,10 +212,7 @@ namespace clothsim
         for (int e = 0; e < n; ++e)
           if (column_row[indices[e]] == other_local[k])
             diagonal = values[e];
-        AssertThrow(diagonal > 0.,
-                    ExcMessage("the tangent has a non-positive diagonal entry on a "
-                               "director angle"));
-        other_inverse_diagonal[k] = 1. / diagonal;
+        set_inverse_diagonal(k, diagonal);
       }
 
     // S̃'s row of displacement i: A's own entries, then −(A_iψ / D_ψψ) A_ψ for each angle

@@ -50,9 +50,16 @@ namespace clothsim
           const TrilinosWrappers::MPI::Vector &src) const;
 
   private:
+    // S̃ (and D) from the tangent A through Epetra's sums: building its profile, or
+    // (`refill`) adding into it.
+    void
+    fill_by_sums(const Epetra_CrsMatrix &A, bool refill);
     // A later tangent on one rank: S̃'s values replaced in place, row by row.
     void
     refill_in_place(const Epetra_CrsMatrix &A);
+    // D's inverse for angle `angle`, refusing a non-positive diagonal.
+    void
+    set_inverse_diagonal(unsigned int angle, double diagonal);
 
     MPI_Comm communicator;
     IndexSet owned;
