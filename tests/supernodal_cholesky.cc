@@ -468,6 +468,34 @@ main(int argc, char **argv)
                       "bits");
             }
         }
+    // The fronts' updates for their parents by gemm on the whole square (the default
+    // with OpenBLAS' AVX-512 kernels) against syrk on the lower triangle: the same
+    // solution up to round-off.
+    out << "this BLAS runs "
+        << (probe.updates_square() ? "square updates (AVX-512 kernels)" : "syrk updates")
+        << " by default" << std::endl;
+    for (const bool single : {true, false})
+      for (const auto &[name, order] : orders)
+        {
+          SupernodalCholesky square(single), lower(single);
+          square.set_square_updates(true);
+          lower.set_square_updates(false);
+          square.analyse(a.n, a.rows, a.columns, *order);
+          lower.analyse(a.n, a.rows, a.columns, *order);
+          const std::string what = std::string("grid, ") + name + " order, " +
+                                   (single ? "single" : "double") + ": ";
+          check(out,
+                square.factorize(a.values.data()) && lower.factorize(a.values.data()),
+                what + "square and lower-triangle updates factorise");
+          check_below(out,
+                      what + "square updates' solution against syrk's",
+                      relative_error(solve(square, a, b), solve(lower, a, b)),
+                      single ? 2e-6 : 1e-13);
+          check_below(out,
+                      what + "square updates' relative error",
+                      relative_error(solve(square, a, b), exact),
+                      single ? 1e-4 : 1e-13);
+        }
     {
       // finish_solve() only right after a factorize() with a right-hand side.
       SupernodalCholesky  cholesky;

@@ -70,6 +70,19 @@ namespace clothsim
   }
 
 
+  bool
+  avx512_blas_kernels()
+  {
+    const OpenBlas blas;
+    if (!blas.loaded())
+      return false;
+    for (const char *family : {"SkylakeX", "Cooperlake", "SapphireRapids"})
+      if (strcasecmp(blas.corename(), family) == 0)
+        return true;
+    return false;
+  }
+
+
   std::string
   blas_description(const bool selected)
   {

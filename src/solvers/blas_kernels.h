@@ -22,6 +22,11 @@ namespace clothsim
   bool
   select_blas_kernels();
 
+  // Whether the BLAS runs OpenBLAS' AVX-512 kernels (SkylakeX, Cooperlake or
+  // SapphireRapids), chosen by OpenBLAS, OPENBLAS_CORETYPE or select_blas_kernels().
+  bool
+  avx512_blas_kernels();
+
   // "OpenBLAS 0.3.21 (SkylakeX kernels)" for the run's provenance, with "chosen by
   // clothsim over OpenBLAS' Prescott" inside the parentheses if `selected`; "BLAS: not
   // OpenBLAS" when the BLAS loaded is another library.

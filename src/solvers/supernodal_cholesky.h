@@ -31,6 +31,24 @@ namespace clothsim
 
     static constexpr int written_out_block_columns = 64;
 
+    // A front's update for its parent, C -= A Aᵀ (A its r x k rows below the pivots),
+    // is BLAS' syrk on C's lower triangle, or, for r <= square_update_rows, gemm on the
+    // whole r x r square (twice the operations; C's upper triangle is never read). The
+    // default is gemm where OpenBLAS runs its AVX-512 kernels, whose syrk is slow on
+    // small blocks (perf: its ssyrk_kernel_L), and syrk elsewhere (with the AVX2
+    // kernels gemm was 2 to 9 % slower; README, "OpenBLAS' kernels").
+    static constexpr int square_update_rows = 128;
+    void
+    set_square_updates(const bool square)
+    {
+      square_updates = square;
+    }
+    bool
+    updates_square() const
+    {
+      return square_updates;
+    }
+
     // The pattern of the upper triangle (0-based, rows[k] <= columns[k], each entry
     // once), and the elimination order: order[p] is the row eliminated p-th (a
     // fill-reducing permutation, e.g. from MUMPS' analysis). Entry k's value will be
@@ -177,6 +195,7 @@ namespace clothsim
 
     bool              single;
     bool              written_out_panels;
+    bool              square_updates;
     Numeric<float>    in_single;
     Numeric<double>   in_double;
     double            n_operations     = 0.;
