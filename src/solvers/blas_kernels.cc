@@ -92,7 +92,14 @@ namespace clothsim
     std::istringstream config(blas.config());
     std::string        name, version;
     config >> name >> version;
+    // A choice made in the environment is named as such: it may be narrower than what
+    // OpenBLAS would pick (Haswell's kernels on an AVX-512 CPU; README, "OpenBLAS'
+    // kernels").
+    const char *environment = std::getenv("OPENBLAS_CORETYPE");
     return name + " " + version + " (" + blas.corename() + " kernels" +
-           (selected ? ", chosen by clothsim over OpenBLAS' Prescott" : "") + ")";
+           (selected      ? ", chosen by clothsim over OpenBLAS' Prescott"
+            : environment ? std::string(", OPENBLAS_CORETYPE=") + environment
+                          : std::string()) +
+           ")";
   }
 } // namespace clothsim

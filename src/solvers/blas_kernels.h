@@ -28,8 +28,9 @@ namespace clothsim
   avx512_blas_kernels();
 
   // "OpenBLAS 0.3.21 (SkylakeX kernels)" for the run's provenance, with "chosen by
-  // clothsim over OpenBLAS' Prescott" inside the parentheses if `selected`; "BLAS: not
-  // OpenBLAS" when the BLAS loaded is another library.
+  // clothsim over OpenBLAS' Prescott" inside the parentheses if `selected`, or
+  // "OPENBLAS_CORETYPE=<value>" if the environment chose them; "BLAS: not OpenBLAS" when
+  // the BLAS loaded is another library.
   std::string
   blas_description(const bool selected);
 } // namespace clothsim
