@@ -83,8 +83,24 @@ namespace clothsim::physics
 
   void
   SelfContact::add_couplings(TrilinosWrappers::SparsityPattern &sparsity,
-                             const AffineConstraints<double> & /*constraints*/) const
+                             const AffineConstraints<double>   &constraints) const
   {
+    // The pairs couple vertices of every rank, also those this rank neither owns nor has
+    // as ghosts, and their assembly (here and in the friction between layers) asks the
+    // constraints about those vertices' dofs: the constraints must store every rank's
+    // lines (BoundaryConditions does with self-contact). Asked about a dof it does not
+    // store, AffineConstraints says "not constrained" in a Release build, so a pinned
+    // vertex of another rank would be taken for a free one. Checked on every rank
+    // together, so that all of them stop.
+    const IndexSet &stored  = constraints.get_local_lines();
+    unsigned int    missing = 0;
+    if (stored.size() > 0)
+      for (const auto &vertex : cloth.vertices)
+        for (const types::global_dof_index dof : vertex.dofs)
+          missing += stored.is_element(dof) ? 0 : 1;
+    AssertThrow(Utilities::MPI::max(missing, whole.get_communicator()) == 0,
+                ExcMessage("self-contact: the constraints do not store the lines of "
+                           "every vertex of the cloth"));
     // Every component of one vertex with every component of the other (constrained
     // dofs included: their rows and columns stay, eliminated when assembled).
     // Rows of owned vertices only.

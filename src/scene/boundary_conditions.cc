@@ -1,5 +1,6 @@
 #include "scene/boundary_conditions.h"
 
+#include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
@@ -253,16 +254,38 @@ namespace clothsim
             }
         }
 
-    constraint_set.reinit(discretization.relevant_dofs());
+    std::vector<types::global_dof_index> lines; // the constrained dofs seen here
     for (const auto &[dof, pin] : found)
       {
         pinned.push_back(pin);
         pinned_dofs.insert(dof);
-        constraint_set.add_line(dof);
+        lines.push_back(dof);
       }
-    for (const types::global_dof_index dof : clamped_angle_dofs)
-      constraint_set.add_line(dof);
-    for (const types::global_dof_index dof : discretization.unused_dofs())
+    lines.insert(lines.end(), clamped_angle_dofs.begin(), clamped_angle_dofs.end());
+    lines.insert(lines.end(),
+                 discretization.unused_dofs().begin(),
+                 discretization.unused_dofs().end());
+    // Self-contact couples a vertex with any other of the sheet, also with vertices this
+    // rank neither owns nor has as ghosts, and asks the constraints about their dofs
+    // (SelfContact::add_couplings). Then every rank stores every rank's lines (the
+    // unused angle dofs make one per vertex: as much as self-contact gathers of the
+    // positions anyway); otherwise those of its locally relevant dofs.
+    IndexSet stored = discretization.relevant_dofs();
+    if (parameters.contact.self_contact &&
+        Utilities::MPI::n_mpi_processes(discretization.get_communicator()) > 1)
+      {
+        std::vector<types::global_dof_index> owned_lines;
+        for (const types::global_dof_index dof : lines)
+          if (discretization.owned_dofs().is_element(dof))
+            owned_lines.push_back(dof);
+        lines.clear();
+        for (const auto &rank_lines :
+             Utilities::MPI::all_gather(discretization.get_communicator(), owned_lines))
+          lines.insert(lines.end(), rank_lines.begin(), rank_lines.end());
+        stored = complete_index_set(dof_handler.n_dofs());
+      }
+    constraint_set.reinit(stored);
+    for (const types::global_dof_index dof : lines)
       constraint_set.add_line(dof);
     constraint_set.close();
 
