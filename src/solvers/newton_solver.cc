@@ -533,14 +533,11 @@ namespace clothsim
 
     auto solver = NOX::Solver::buildSolver(group, status, nox_parameters);
     NOX::StatusTest::StatusType outcome = NOX::StatusTest::Unconverged;
+    // Any other exception (a defect, memory) goes on to the application, which stops
+    // every rank: thrown on one rank only, a retry would leave the others waiting.
     try
       {
         outcome = solver->solve();
-      }
-    catch (const std::exception &e)
-      {
-        context.failure = e.what();
-        outcome         = NOX::StatusTest::Failed;
       }
     catch (const char *message)
       {
